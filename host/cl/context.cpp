@@ -1,0 +1,102 @@
+#include "cl/context.hpp"
+
+#include <sstream>
+
+#include "util/error.hpp"
+
+namespace clpath {
+namespace {
+
+std::string mib(std::size_t bytes) {
+    std::ostringstream os;
+    os.precision(4);
+    os << double(bytes) / (1 << 20) << " MiB";
+    return os.str();
+}
+
+}  // namespace
+
+Context::Context(const DeviceInfo& device) : device_(device) {
+    cl_int err = CL_SUCCESS;
+    ctx_ = clCreateContext(nullptr, 1, &device_.device, nullptr, nullptr, &err);
+    cl_check(err, "clCreateContext on " + device_.name);
+    queue_ = clCreateCommandQueue(ctx_, device_.device, CL_QUEUE_PROFILING_ENABLE, &err);
+    if (err != CL_SUCCESS) {
+        clReleaseContext(ctx_);
+        cl_check(err, "clCreateCommandQueue on " + device_.name);
+    }
+}
+
+Context::~Context() {
+    if (queue_) {
+        clFinish(queue_);
+        clReleaseCommandQueue(queue_);
+    }
+    if (ctx_) clReleaseContext(ctx_);
+}
+
+void Context::check_fits(const std::vector<std::pair<std::string, std::size_t>>& buffers) const {
+    std::size_t total = allocated_;
+    for (const auto& [what, bytes] : buffers) {
+        if (bytes > device_.max_alloc)
+            throw Error(what + " needs " + mib(bytes) + ", more than " + device_.name +
+                        " allows in one buffer (CL_DEVICE_MAX_MEM_ALLOC_SIZE = " + mib(device_.max_alloc) + ")");
+        total += bytes;
+    }
+    if (total > device_.global_mem)
+        throw Error("the scene's buffers need " + mib(total) + " in all, more than the " + mib(device_.global_mem) +
+                    " of global memory of " + device_.name);
+}
+
+Buffer Context::buffer(std::size_t bytes, cl_mem_flags flags, const std::string& what, const void* init) {
+    if (bytes == 0) bytes = 16;  // OpenCL forbids empty buffers; a kernel never reads this one
+    check_fits({{what, bytes}});
+    cl_int err = CL_SUCCESS;
+    cl_mem m = clCreateBuffer(ctx_, flags | (init ? CL_MEM_COPY_HOST_PTR : 0), bytes, const_cast<void*>(init), &err);
+    cl_check(err, "allocating " + what + " (" + mib(bytes) + ") on " + device_.name);
+    allocated_ += bytes;
+    return Buffer(m, bytes);
+}
+
+void Context::write(const Buffer& b, const void* data, std::size_t bytes, std::size_t offset) {
+    cl_check(clEnqueueWriteBuffer(queue_, b.get(), CL_TRUE, offset, bytes, data, 0, nullptr, nullptr),
+             "clEnqueueWriteBuffer");
+}
+
+void Context::read(const Buffer& b, void* data, std::size_t bytes, std::size_t offset) {
+    cl_check(clEnqueueReadBuffer(queue_, b.get(), CL_TRUE, offset, bytes, data, 0, nullptr, nullptr),
+             "clEnqueueReadBuffer");
+}
+
+Kernel Context::kernel(cl_program program, const std::string& name) {
+    cl_int err = CL_SUCCESS;
+    cl_kernel k = clCreateKernel(program, name.c_str(), &err);
+    cl_check(err, "clCreateKernel(" + name + ")");
+    return Kernel(k, name);
+}
+
+cl_event Context::launch(const Kernel& k, std::size_t global, std::size_t local, bool want_event) {
+    if (global == 0) return nullptr;
+    std::size_t g = global;
+    if (local) g = (global + local - 1) / local * local;
+    cl_event ev = nullptr;
+    cl_check(clEnqueueNDRangeKernel(queue_, k.get(), 1, nullptr, &g, local ? &local : nullptr, 0, nullptr,
+                                    want_event ? &ev : nullptr),
+             "launching " + k.name() + " on " + device_.name);
+    return ev;
+}
+
+void Context::finish() { cl_check(clFinish(queue_), "clFinish on " + device_.name); }
+
+double event_seconds(cl_event e) {
+    cl_ulong start = 0, end = 0;
+    cl_check(clWaitForEvents(1, &e), "clWaitForEvents");
+    cl_check(clGetEventProfilingInfo(e, CL_PROFILING_COMMAND_START, sizeof start, &start, nullptr),
+             "clGetEventProfilingInfo");
+    cl_check(clGetEventProfilingInfo(e, CL_PROFILING_COMMAND_END, sizeof end, &end, nullptr),
+             "clGetEventProfilingInfo");
+    clReleaseEvent(e);
+    return double(end - start) * 1e-9;
+}
+
+}  // namespace clpath

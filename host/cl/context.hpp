@@ -1,0 +1,120 @@
+#pragma once
+// The OpenCL runtime layer: one Context owns the device's context and queue
+// and every buffer made through it; each call is checked and errors carry names.
+#include <CL/cl.h>
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cl/device.hpp"
+#include "cl/errors.hpp"
+
+namespace clpath {
+
+// Move-only owner of one cl_mem.
+class Buffer {
+public:
+    Buffer() = default;
+    Buffer(cl_mem m, std::size_t bytes) : mem_(m), bytes_(bytes) {}
+    Buffer(Buffer&& o) noexcept : mem_(std::exchange(o.mem_, nullptr)), bytes_(std::exchange(o.bytes_, 0)) {}
+    Buffer& operator=(Buffer&& o) noexcept {
+        std::swap(mem_, o.mem_);
+        std::swap(bytes_, o.bytes_);
+        return *this;
+    }
+    Buffer(const Buffer&) = delete;
+    Buffer& operator=(const Buffer&) = delete;
+    ~Buffer() {
+        if (mem_) clReleaseMemObject(mem_);
+    }
+    cl_mem get() const { return mem_; }
+    std::size_t bytes() const { return bytes_; }
+
+private:
+    cl_mem mem_ = nullptr;
+    std::size_t bytes_ = 0;
+};
+
+// Move-only owner of one cl_kernel, with typed argument setting.
+class Kernel {
+public:
+    Kernel() = default;
+    Kernel(cl_kernel k, std::string name) : k_(k), name_(std::move(name)) {}
+    Kernel(Kernel&& o) noexcept : k_(std::exchange(o.k_, nullptr)), name_(std::move(o.name_)) {}
+    Kernel& operator=(Kernel&& o) noexcept {
+        std::swap(k_, o.k_);
+        std::swap(name_, o.name_);
+        return *this;
+    }
+    Kernel(const Kernel&) = delete;
+    Kernel& operator=(const Kernel&) = delete;
+    ~Kernel() {
+        if (k_) clReleaseKernel(k_);
+    }
+    template <class T>
+    Kernel& arg(cl_uint i, const T& v) {
+        cl_check(clSetKernelArg(k_, i, sizeof(T), &v), "clSetKernelArg(" + name_ + ", " + std::to_string(i) + ")");
+        return *this;
+    }
+    Kernel& arg(cl_uint i, const Buffer& b) {
+        cl_mem m = b.get();
+        return arg(i, m);
+    }
+    cl_kernel get() const { return k_; }
+    const std::string& name() const { return name_; }
+
+private:
+    cl_kernel k_ = nullptr;
+    std::string name_;
+};
+
+class Context {
+public:
+    explicit Context(const DeviceInfo& device);
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    const DeviceInfo& device() const { return device_; }
+    cl_context get() const { return ctx_; }
+    cl_command_queue queue() const { return queue_; }
+
+    // Allocates after checking the size against the device's largest single
+    // allocation and against its global memory, so that a scene too large for
+    // the device gives a clear message rather than a failed launch later.
+    // what names the buffer in that message.
+    Buffer buffer(std::size_t bytes, cl_mem_flags flags, const std::string& what, const void* init = nullptr);
+
+    // The check alone, for callers that want to fail before building anything.
+    void check_fits(const std::vector<std::pair<std::string, std::size_t>>& buffers) const;
+
+    void write(const Buffer& b, const void* data, std::size_t bytes, std::size_t offset = 0);
+    void read(const Buffer& b, void* data, std::size_t bytes, std::size_t offset = 0);
+    template <class T>
+    void write(const Buffer& b, const std::vector<T>& v) { write(b, v.data(), v.size() * sizeof(T)); }
+    template <class T>
+    void read(const Buffer& b, std::vector<T>& v) { read(b, v.data(), v.size() * sizeof(T)); }
+
+    // A kernel from a program built for this context (see program.hpp).
+    Kernel kernel(cl_program program, const std::string& name);
+
+    // Enqueues a 1-D launch; local 0 lets the driver choose. Returns the event
+    // when want_event is set (the queue profiles, so its times are kernel times).
+    cl_event launch(const Kernel& k, std::size_t global, std::size_t local = 0, bool want_event = false);
+    void finish();
+
+    std::size_t allocated_bytes() const { return allocated_; }
+
+private:
+    DeviceInfo device_;
+    cl_context ctx_ = nullptr;
+    cl_command_queue queue_ = nullptr;
+    std::size_t allocated_ = 0;
+};
+
+// Seconds a finished, profiled event spent executing; releases the event.
+double event_seconds(cl_event e);
+
+}  // namespace clpath

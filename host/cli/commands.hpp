@@ -1,0 +1,15 @@
+#pragma once
+// The subcommands of the clpath program. Each registers its options on the
+// CLI11 app and returns the function that runs it.
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace clpath {
+
+using Command = std::function<int()>;
+
+Command add_render_command(CLI::App& app);
+Command add_devices_command(CLI::App& app);
+
+}  // namespace clpath

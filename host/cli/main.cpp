@@ -1,0 +1,38 @@
+// clpath: an OpenCL Monte Carlo path tracer. Subcommands: render, devices.
+#include <cstdio>
+#include <map>
+
+#include "cli/commands.hpp"
+#include "util/error.hpp"
+
+int main(int argc, char** argv) {
+    CLI::App app{"clpath: an OpenCL Monte Carlo path tracer"};
+    app.require_subcommand(1);
+    std::map<CLI::App*, clpath::Command> commands;
+    auto add = [&](clpath::Command (*adder)(CLI::App&)) {
+        const std::size_t before = app.get_subcommands({}).size();
+        clpath::Command run = adder(app);
+        commands[app.get_subcommands({})[before]] = std::move(run);
+    };
+    add(clpath::add_render_command);
+    add(clpath::add_devices_command);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    try {
+        for (auto* sub : app.get_subcommands())
+            if (auto it = commands.find(sub); it != commands.end()) return it->second();
+        return 2;
+    } catch (const clpath::Error& e) {
+        std::fprintf(stderr, "clpath: error: %s\n", e.what());
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "clpath: error: out of host memory\n");
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "clpath: internal error: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,144 @@
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cl/context.hpp"
+#include "cli/commands.hpp"
+#include "cli/progress.hpp"
+#include "image/image.hpp"
+#include "render/renderer.hpp"
+#include "scene/builtin_scenes.hpp"
+#include "util/error.hpp"
+
+namespace clpath {
+namespace {
+
+struct RenderOptions {
+    std::string scene = "cornell";
+    std::uint64_t spp = 0;
+    double time_limit = 0;
+    std::uint32_t max_depth = 16, seed = 0, rr_min_depth = 3;
+    std::string rr = "throughput";
+    int width = 0, height = 0;
+    std::vector<std::string> outputs;
+    std::string device;
+    int leaf_size = 4, bins = 16;
+    bool quiet = false;
+};
+
+std::uint32_t rr_rule(const std::string& name) {
+    if (name == "throughput") return CLP_RR_THROUGHPUT;
+    if (name == "depth") return CLP_RR_DEPTH;
+    return CLP_RR_NONE;
+}
+
+int run_render(const RenderOptions& o) {
+    // Everything that can be checked before rendering is checked first.
+    Scene scene = builtin_scene(o.scene);
+    if (o.width) scene.camera.width = o.width;
+    if (o.height) scene.camera.height = o.height;
+    std::vector<std::string> outputs = o.outputs;
+    if (outputs.empty()) {
+        // The default destination is created; one the user names must exist.
+        std::filesystem::create_directories("out");
+        outputs = {"out/" + scene.name + ".png", "out/" + scene.name + ".exr"};
+    }
+    for (const auto& out : outputs) check_output_path(out);
+    const std::uint64_t spp = (o.spp == 0 && o.time_limit == 0) ? 64 : o.spp;
+    if (!scene.has_emitter())
+        std::fprintf(stderr, "clpath: warning: scene '%s' has no emitter; the image will be black\n",
+                     scene.name.c_str());
+
+    const DeviceInfo device = select_device(o.device);
+    Context ctx(device);
+    RenderSettings settings;
+    settings.max_depth = o.max_depth;
+    settings.seed = o.seed;
+    settings.rr_rule = rr_rule(o.rr);
+    settings.rr_min_depth = o.rr_min_depth;
+    settings.bvh.max_leaf_size = o.leaf_size;
+    settings.bvh.bins = o.bins;
+    if (!o.quiet)
+        std::fprintf(stderr, "clpath: rendering '%s' (%zu triangles) at %dx%d on %s\n", scene.name.c_str(),
+                     scene.triangle_count(), scene.camera.width, scene.camera.height, device.describe().c_str());
+    Renderer renderer(ctx, scene, settings);
+    if (!o.quiet)
+        std::fprintf(stderr, "clpath: %s; kernels %s in %.2f s\n", describe(renderer.bvh_stats()).c_str(),
+                     renderer.compiled_from_cache() ? "loaded from cache" : "compiled", renderer.compile_seconds());
+
+    Progress progress(spp, o.time_limit, !o.quiet);
+    const auto t0 = std::chrono::steady_clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+    for (;;) {
+        const std::uint64_t done = renderer.stats().samples_per_pixel;
+        if (spp && done >= spp) break;
+        if (o.time_limit > 0 && elapsed() >= o.time_limit) break;
+        // One sample per step when a time limit is set, so the limit is kept closely;
+        // otherwise steps of up to 1/20 of the total, for a smooth progress bar.
+        std::uint64_t step = o.time_limit > 0 ? 1 : std::max<std::uint64_t>(1, spp / 20);
+        if (spp) step = std::min(step, spp - done);
+        if (done + step > kMaxSamplesPerPixel) break;
+        renderer.add_samples(std::uint32_t(step));
+        progress.update(renderer.stats().samples_per_pixel, elapsed());
+    }
+    progress.finish();
+    const double wall = elapsed();
+    RenderedImage image = renderer.resolve();
+    for (const auto& out : outputs) {
+        write_image(out, image);
+        if (!o.quiet) std::fprintf(stderr, "clpath: wrote %s\n", out.c_str());
+    }
+
+    const RenderStats& st = renderer.stats();
+    const double samples = double(st.samples_per_pixel) * scene.camera.width * scene.camera.height;
+    std::printf(
+        "summary: device=\"%s\" triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f spp=%llu "
+        "render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu\n",
+        device.name.c_str(), renderer.triangle_count(), renderer.bvh_stats().build_ms, renderer.bvh_stats().node_count,
+        renderer.bvh_stats().sah_cost, (unsigned long long)st.samples_per_pixel, wall, samples / wall * 1e-6,
+        double(st.rays) / wall * 1e-6, (unsigned long long)st.rays, (unsigned long long)st.nonfinite);
+    if (st.nonfinite)
+        std::fprintf(stderr, "clpath: warning: %llu samples were NaN or infinite and were dropped\n",
+                     (unsigned long long)st.nonfinite);
+    return 0;
+}
+
+}  // namespace
+
+Command add_render_command(CLI::App& app) {
+    auto o = std::make_shared<RenderOptions>();
+    CLI::App* cmd = app.add_subcommand("render", "Render a scene progressively and write the image");
+    std::string names;
+    for (const auto& n : builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
+    cmd->add_option("scene", o->scene, "Scene to render (built-in: " + names + ")")->capture_default_str();
+    cmd->add_option("--spp", o->spp, "Samples per pixel (default 64, or unlimited with --time)")
+        ->check(CLI::Range(std::uint64_t(1), kMaxSamplesPerPixel));
+    cmd->add_option("--time", o->time_limit, "Stop after this many seconds")->check(CLI::PositiveNumber);
+    cmd->add_option("--max-depth", o->max_depth, "Maximum bounces (0: emitters only)")
+        ->check(CLI::Range(0, 1024))
+        ->capture_default_str();
+    cmd->add_option("--rr", o->rr, "Russian roulette: throughput (unbiased), depth (the thesis rule), none")
+        ->check(CLI::IsMember({"throughput", "depth", "none"}))
+        ->capture_default_str();
+    cmd->add_option("--rr-min-depth", o->rr_min_depth, "Bounces before throughput roulette starts")
+        ->check(CLI::Range(0, 1024))
+        ->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+    cmd->add_option("--width", o->width, "Image width (default: the scene's)")->check(CLI::Range(1, 16384));
+    cmd->add_option("--height", o->height, "Image height (default: the scene's)")->check(CLI::Range(1, 16384));
+    cmd->add_option("--out,-o", o->outputs,
+                    "Output image, .png (8-bit sRGB), .exr or .pfm (linear float); repeatable "
+                    "(default: out/SCENE.png and out/SCENE.exr)");
+    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
+    cmd->add_option("--leaf-size", o->leaf_size, "BVH: most triangles per leaf")
+        ->check(CLI::Range(1, 64))
+        ->capture_default_str();
+    cmd->add_option("--bins", o->bins, "BVH: SAH bins per axis")->check(CLI::Range(2, 256))->capture_default_str();
+    cmd->add_flag("--quiet,-q", o->quiet, "Print only the summary line");
+    return [o] { return run_render(*o); };
+}
+
+}  // namespace clpath

@@ -1,0 +1,82 @@
+#pragma once
+// The progressive renderer: owns the scene's device buffers and the compiled
+// kernels, adds samples in short launches, and resolves the running mean.
+#include <cstdint>
+#include <string>
+
+#include "bvh/bvh.hpp"
+#include "cl/context.hpp"
+#include "cl/program.hpp"
+#include "image/image.hpp"
+#include "scene/scene.hpp"
+
+namespace clpath {
+
+struct RenderSettings {
+    std::uint32_t max_depth = 16;  // bounces; 0 shows emitters only
+    std::uint32_t rr_rule = CLP_RR_THROUGHPUT;
+    std::uint32_t rr_min_depth = 3;  // bounces before throughput roulette starts
+    std::uint32_t seed = 0;
+    // Launches are sized to take about this long: short enough for a GPU
+    // driver's watchdog and an interactive viewer, long enough to keep a device busy.
+    double target_launch_seconds = 0.1;
+    BvhBuildOptions bvh;
+};
+
+struct RenderStats {
+    std::uint64_t samples_per_pixel = 0;
+    std::uint64_t rays = 0;       // every ray traced
+    std::uint64_t nonfinite = 0;  // samples dropped as NaN/inf
+    std::uint64_t launches = 0;
+    double render_seconds = 0;    // wall time spent in launches, to their completion
+};
+
+// Largest samples-per-pixel count one render may reach: the kernels index
+// samples with 32-bit integers.
+constexpr std::uint64_t kMaxSamplesPerPixel = 0xffffffffull;
+
+class Renderer {
+public:
+    // Builds the BVH, checks that everything fits on the device, uploads and
+    // compiles. Throws clpath::Error with the reason when any step fails.
+    Renderer(Context& ctx, const Scene& scene, const RenderSettings& settings);
+
+    // Adds n samples per pixel (in as many launches as the time target asks).
+    void add_samples(std::uint32_t n);
+    // Starts the mean again (the viewer's camera moved), keeping the scene.
+    void reset();
+    void set_camera(const Camera& camera);
+    void set_settings(const RenderSettings& settings);  // takes effect after reset
+
+    RenderedImage resolve(float exposure = 1.0f);
+
+    const RenderStats& stats() const { return stats_; }
+    const BvhStats& bvh_stats() const { return bvh_stats_; }
+    std::size_t triangle_count() const { return triangle_count_; }
+    double compile_seconds() const { return compile_seconds_; }
+    bool compiled_from_cache() const { return from_cache_; }
+    const Camera& camera() const { return camera_; }
+    std::size_t device_bytes() const;
+
+private:
+    void launch_band(std::uint32_t first_pixel, std::uint32_t pixel_count, std::uint32_t samples);
+    std::uint32_t tiled_pixel_count() const;
+
+    Context& ctx_;
+    RenderSettings settings_;
+    Camera camera_;
+    BvhStats bvh_stats_;
+    std::size_t triangle_count_ = 0;
+    Buffer nodes_, tris_, tri_material_, materials_, params_, accum_, counters_, linear_, srgb_;
+    Program program_;
+    Kernel render_, clear_, resolve_;
+    RenderStats stats_;
+    double compile_seconds_ = 0;
+    bool from_cache_ = false;
+    double seconds_per_pixel_sample_ = 0;  // measured; sizes the launches
+};
+
+// Compiler options for the renderer's kernels.
+std::string renderer_build_options(const Scene& scene);
+
+}  // namespace clpath

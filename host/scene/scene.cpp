@@ -1,0 +1,81 @@
+#include "scene/scene.hpp"
+
+#include <cmath>
+
+#include "util/error.hpp"
+
+namespace clpath {
+namespace {
+void store3(float* dst, glm::vec3 v) {
+    dst[0] = v.x;
+    dst[1] = v.y;
+    dst[2] = v.z;
+}
+}  // namespace
+
+CameraData camera_data(const Camera& c) {
+    const glm::vec3 view = c.target - c.eye;
+    if (!(glm::length(view) > 0.0f) || !std::isfinite(glm::length(view)))
+        throw Error("camera: eye and target must be distinct finite points");
+    if (!(c.vfov_degrees > 0.0f && c.vfov_degrees < 180.0f))
+        throw Error("camera: vertical field of view must be in (0, 180) degrees, got " +
+                    std::to_string(c.vfov_degrees));
+    if (c.width <= 0 || c.height <= 0) throw Error("camera: width and height must be positive");
+    const glm::vec3 forward = glm::normalize(view);
+    const glm::vec3 side = glm::cross(forward, c.up);
+    if (!(glm::length(side) > 1e-6f * glm::length(c.up)))
+        throw Error("camera: up must not be parallel to the view direction");
+    const glm::vec3 right = glm::normalize(side);
+    const glm::vec3 up = glm::cross(right, forward);
+    const float ty = std::tan(glm::radians(c.vfov_degrees) * 0.5f);
+    const float tx = ty * float(c.width) / float(c.height);
+    CameraData d{};
+    store3(d.eye, c.eye);
+    store3(d.forward, forward);
+    store3(d.right, right * tx);
+    store3(d.up, up * ty);
+    d.width = std::uint32_t(c.width);
+    d.height = std::uint32_t(c.height);
+    return d;
+}
+
+std::uint32_t Scene::add_material(const std::string& name, const Material& m) {
+    for (const auto& n : material_names)
+        if (n == name) throw Error("material '" + name + "' defined twice");
+    materials.push_back(m);
+    material_names.push_back(name);
+    return std::uint32_t(materials.size() - 1);
+}
+
+void Scene::add_triangles(const std::vector<glm::vec3>& tris, std::uint32_t material) {
+    vertices.insert(vertices.end(), tris.begin(), tris.end());
+    triangle_material.insert(triangle_material.end(), tris.size() / 3, material);
+}
+
+bool Scene::has_emitter() const {
+    std::vector<bool> used(materials.size(), false);
+    for (auto m : triangle_material) used[m] = true;
+    for (std::size_t i = 0; i < materials.size(); ++i)
+        if (used[i] && materials[i].kind == CLP_MAT_EMISSIVE &&
+            (materials[i].emission[0] > 0 || materials[i].emission[1] > 0 || materials[i].emission[2] > 0))
+            return true;
+    return false;
+}
+
+Material diffuse(glm::vec3 albedo) {
+    Material m{};
+    m.kind = CLP_MAT_DIFFUSE;
+    store3(m.albedo, albedo);
+    return m;
+}
+
+Material emitter(glm::vec3 radiance, bool two_sided, glm::vec3 albedo) {
+    Material m{};
+    m.kind = CLP_MAT_EMISSIVE;
+    store3(m.emission, radiance);
+    store3(m.albedo, albedo);
+    m.flags = two_sided ? CLP_MATF_TWO_SIDED_EMISSION : 0u;
+    return m;
+}
+
+}  // namespace clpath

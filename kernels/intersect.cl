@@ -1,0 +1,137 @@
+/* Ray against triangle and box, both exact where it matters:
+ *  - triangles: the watertight test of Woop, Benthin and Wald (2013), so no ray
+ *    slips between two triangles that share an edge;
+ *  - boxes: the slab test, correct for +0 and -0 direction components, with
+ *    Ize's (2013) conservative widening so rounding never loses a box;
+ *  - secondary-ray origins: offset by the hit point's rounding-error bound
+ *    (Pharr, Jakob and Humphreys, PBR 4th ed., 6.8), which works at any scale. */
+
+/* gamma(n) = n eps / (1 - n eps): the relative error bound of n roundings (PBR 6.8.1). */
+#define CLP_GAMMA(n) (((float)(n) * 0x1.0p-24f) / (1.0f - (float)(n) * 0x1.0p-24f))
+
+typedef struct {
+    float3 org;
+    float3 dir;
+    float3 inv_dir; /* 1/dir: +-infinity for +-0 components, as the slab test needs */
+    float3 porg;    /* origin with axes permuted to (kx, ky, kz) */
+    float sx, sy, sz;
+    int kx, ky, kz;
+} RayPre;
+
+inline float axis_of(float3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
+inline float3 permute3(float3 v, int kx, int ky, int kz) {
+    return (float3)(axis_of(v, kx), axis_of(v, ky), axis_of(v, kz));
+}
+
+inline RayPre ray_prepare(float3 o, float3 d) {
+    RayPre r;
+    r.org = o;
+    r.dir = d;
+    r.inv_dir = (float3)(1.0f / d.x, 1.0f / d.y, 1.0f / d.z);
+    float3 a = fabs(d);
+    /* kz: the dominant axis; kx, ky follow it cyclically, swapped when d[kz] < 0
+     * so that the sheared triangle keeps its winding (Woop et al., section 3). */
+    int kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+    int kx = kz == 2 ? 0 : kz + 1;
+    int ky = kx == 2 ? 0 : kx + 1;
+    float dz = axis_of(d, kz);
+    if (dz < 0.0f) {
+        int t = kx;
+        kx = ky;
+        ky = t;
+    }
+    r.kx = kx;
+    r.ky = ky;
+    r.kz = kz;
+    r.sx = axis_of(d, kx) / dz;
+    r.sy = axis_of(d, ky) / dz;
+    r.sz = 1.0f / dz;
+    r.porg = permute3(o, kx, ky, kz);
+    return r;
+}
+
+/* Watertight ray/triangle test. On a hit in (0, tmax) returns 1 and writes t and
+ * the barycentric weights (b1, b2) of v1 and v2. */
+inline int intersect_triangle(const RayPre* r, float3 v0, float3 v1, float3 v2, float tmax, float* t_out,
+                              float* b1_out, float* b2_out) {
+    /* Fused multiply-adds would round the two triangles sharing an edge
+     * differently, and a ray could then miss both (Woop et al., section 4). */
+#pragma OPENCL FP_CONTRACT OFF
+    float3 A = permute3(v0, r->kx, r->ky, r->kz) - r->porg;
+    float3 B = permute3(v1, r->kx, r->ky, r->kz) - r->porg;
+    float3 C = permute3(v2, r->kx, r->ky, r->kz) - r->porg;
+    float sxaz = r->sx * A.z, syaz = r->sy * A.z;
+    float sxbz = r->sx * B.z, sybz = r->sy * B.z;
+    float sxcz = r->sx * C.z, sycz = r->sy * C.z;
+    float Ax = A.x - sxaz, Ay = A.y - syaz;
+    float Bx = B.x - sxbz, By = B.y - sybz;
+    float Cx = C.x - sxcz, Cy = C.y - sycz;
+    float u0 = Cx * By, u1 = Cy * Bx;
+    float v0p = Ax * Cy, v1p = Ay * Cx;
+    float w0 = Bx * Ay, w1 = By * Ax;
+    float U = u0 - u1, V = v0p - v1p, W = w0 - w1;
+    /* An edge function of exactly 0 counts as inside, from either side: a ray
+     * through a shared edge then hits both triangles rather than neither. */
+    if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return 0;
+    float det = U + V + W;
+    if (det == 0.0f) return 0; /* ray in the triangle's plane, or a degenerate triangle */
+    float Az = r->sz * A.z, Bz = r->sz * B.z, Cz = r->sz * C.z;
+    float T = U * Az + V * Bz + W * Cz;
+    /* Compare T with t * det without dividing, keeping the sign of det. */
+    if (det < 0.0f) {
+        T = -T;
+        det = -det;
+        U = -U;
+        V = -V;
+        W = -W;
+    }
+    if (T <= 0.0f || T >= tmax * det) return 0;
+    float inv = 1.0f / det;
+    *t_out = T * inv;
+    *b1_out = V * inv;
+    *b2_out = W * inv;
+    return 1;
+}
+
+/* Slab test of one box. A zero direction component gives an infinite 1/d, and
+ * the product 0 * inf (origin on the slab plane) gives NaN: fmin/fmax return
+ * their other operand then, which treats that axis as a miss for a ray lying
+ * exactly in a box face; that ray is tangent to everything the face bounds.
+ * Returns the entry distance, or +INFINITY for a miss. */
+inline float intersect_box(const RayPre* r, float3 lo, float3 hi, float tmax) {
+    float3 t0 = (lo - r->org) * r->inv_dir;
+    float3 t1 = (hi - r->org) * r->inv_dir;
+    float3 tn = fmin(t0, t1), tf = fmax(t0, t1);
+    float tnear = fmax(fmax(tn.x, tn.y), fmax(tn.z, 0.0f));
+    /* Ize (2013), "Robust BVH Ray Traversal": widen the exit distance by the
+     * rounding of the subtraction, the product and the (not correctly rounded,
+     * 2.5 ulp in OpenCL) reciprocal, so a ray never misses a box it enters. */
+    float tfar = fmin(fmin(tf.x, tf.y), fmin(tf.z, tmax)) * (1.0f + 2.0f * CLP_GAMMA(5));
+    return tnear <= tfar ? tnear : INFINITY;
+}
+
+/* Hit point from barycentrics, with a bound on its rounding error
+ * (PBR 4th ed., 6.8.5: gamma(7) for the weighted sum; widened to gamma(10) for
+ * OpenCL's division, which may be off by 2.5 ulp). */
+inline float3 hit_point(float3 v0, float3 v1, float3 v2, float b1, float b2, float3* err) {
+    float b0 = 1.0f - b1 - b2;
+    float3 p = b0 * v0 + b1 * v1 + b2 * v2;
+    *err = CLP_GAMMA(10) * (fabs(b0 * v0) + fabs(b1 * v1) + fabs(b2 * v2));
+    return p;
+}
+
+inline float next_float_away(float x, float dir_sign) {
+    return dir_sign > 0.0f ? nextafter(x, INFINITY) : (dir_sign < 0.0f ? nextafter(x, -INFINITY) : x);
+}
+
+/* Origin for a ray leaving a surface at p towards w: moved along the normal
+ * past the error box around p, then rounded away from the surface, so that the
+ * new ray cannot re-hit the surface it left, at any scale (PBR 4th ed., 6.8.6). */
+inline float3 offset_ray_origin(float3 p, float3 err, float3 n, float3 w) {
+    float d = dot(fabs(n), err);
+    float3 offset = d * n;
+    if (dot(w, n) < 0.0f) offset = -offset;
+    float3 po = p + offset;
+    return (float3)(next_float_away(po.x, offset.x), next_float_away(po.y, offset.y),
+                    next_float_away(po.z, offset.z));
+}

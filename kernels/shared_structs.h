@@ -1,0 +1,128 @@
+/*
+ * clpath: the structs that host and kernels both read. This one header is
+ * included by the C++ host and prepended to every OpenCL program, so a layout
+ * is defined exactly once.
+ *
+ * Layout rules (why no float3 anywhere): OpenCL's float3 is 16 bytes and
+ * 16-byte aligned, the host's float[3] is 12 bytes, so a float3 member would
+ * silently shift every later field. Every struct here is made of 4-byte
+ * scalars and fixed arrays only, sized to a multiple of 16 bytes, and its size
+ * is asserted on both sides (bottom of this file).
+ */
+#ifndef CLPATH_SHARED_STRUCTS_H
+#define CLPATH_SHARED_STRUCTS_H
+
+#ifdef __OPENCL_C_VERSION__
+#define CLP_STATIC_ASSERT(cond, name) typedef char clp_static_assert_##name[(cond) ? 1 : -1]
+#else
+#include <cstdint>
+typedef std::uint32_t uint;
+#define CLP_STATIC_ASSERT(cond, name) static_assert(cond, #name)
+#endif
+
+/* Deepest BVH the builder may produce, and so the traversal stack size. The
+ * builder forces balanced splits before it gets there (host/bvh/). */
+#define CLP_BVH_MAX_DEPTH 64
+
+/* Material kinds. A program is compiled only with the kinds a scene uses. */
+#define CLP_MAT_DIFFUSE 0u
+#define CLP_MAT_EMISSIVE 1u
+
+/* Material flags. */
+#define CLP_MATF_TWO_SIDED_EMISSION 1u /* emits from the back face too */
+
+/* Russian roulette rules. */
+#define CLP_RR_NONE 0u       /* trace every path to max_depth */
+#define CLP_RR_THROUGHPUT 1u /* survive with p = max(throughput), after rr_min_depth bounces */
+#define CLP_RR_DEPTH 2u      /* the thesis renderer's rule: p = 1 - 1/(max_depth - depth) */
+
+/*
+ * BVH node, in the Aila & Laine (2009) "both children in one node" layout:
+ * a traversal step fetches one 64-byte node and tests both child boxes.
+ * child[i] >= 0: index of an interior node.
+ * child[i] <  0: a leaf holding count[i] triangles from ~child[i] on
+ *                (count 0: an empty slot, used only when the root is a leaf).
+ */
+typedef struct {
+    float lo0[3];
+    int child0;
+    float hi0[3];
+    uint count0;
+    float lo1[3];
+    int child1;
+    float hi1[3];
+    uint count1;
+} BvhNode;
+
+/* Triangle as traversal reads it, in BVH leaf order. prim is the index of the
+ * triangle in the scene's original order (for material and shading data). */
+typedef struct {
+    float v0[3];
+    uint prim;
+    float v1[3];
+    uint pad1;
+    float v2[3];
+    uint pad2;
+} TriVerts;
+
+/* A material: one record for every kind, read only by the kinds that use it. */
+typedef struct {
+    float albedo[3];   /* diffuse reflectance; 0 for a pure emitter */
+    uint kind;         /* CLP_MAT_* */
+    float emission[3]; /* emitted radiance (W sr^-1 m^-2 per channel) */
+    uint flags;        /* CLP_MATF_* */
+} Material;
+
+/* Pinhole camera, already turned into a ray basis by the host:
+ * direction(x_ndc, y_ndc) = forward + x_ndc * right + y_ndc * up,
+ * where right and up are scaled by tan(fov/2) of their axis. */
+typedef struct {
+    float eye[3];
+    uint width;
+    float forward[3];
+    uint height;
+    float right[3];
+    float pad0;
+    float up[3];
+    float pad1;
+} CameraData;
+
+/* What one launch of the path kernel needs besides the buffers. */
+typedef struct {
+    CameraData camera;
+    uint seed;
+    uint first_sample;     /* sample index of this launch's first sample */
+    uint samples;          /* samples per pixel in this launch */
+    uint max_depth;        /* bounces: 0 sees emitters only */
+    uint rr_rule;          /* CLP_RR_* */
+    uint rr_min_depth;     /* bounces before throughput roulette starts */
+    uint pixel_offset;     /* first pixel of this launch (launches may cover a band) */
+    uint pixel_count;
+} FrameParams;
+
+/* Counters the kernels bump with atomics; the host reads and clears them per launch. */
+typedef struct {
+    uint rays;      /* every ray traced, camera, bounce and shadow */
+    uint nonfinite; /* samples that came out NaN or infinite (and were dropped) */
+    uint pad0;
+    uint pad1;
+} Counters;
+
+/* Running per-pixel sum, Kahan-compensated so that a float sum of a million
+ * samples does not drift (Kahan 1965): sum holds the total, comp the lost
+ * low-order part. w of sum counts nothing; the sample count is uniform and
+ * kept by the host. */
+typedef struct {
+    float sum[4];
+    float comp[4];
+} AccumPixel;
+
+CLP_STATIC_ASSERT(sizeof(BvhNode) == 64, bvh_node_is_64_bytes);
+CLP_STATIC_ASSERT(sizeof(TriVerts) == 48, tri_verts_is_48_bytes);
+CLP_STATIC_ASSERT(sizeof(Material) == 32, material_is_32_bytes);
+CLP_STATIC_ASSERT(sizeof(CameraData) == 64, camera_is_64_bytes);
+CLP_STATIC_ASSERT(sizeof(FrameParams) == 96, frame_params_is_96_bytes);
+CLP_STATIC_ASSERT(sizeof(Counters) == 16, counters_is_16_bytes);
+CLP_STATIC_ASSERT(sizeof(AccumPixel) == 32, accum_pixel_is_32_bytes);
+
+#endif

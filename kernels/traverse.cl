@@ -1,0 +1,70 @@
+/* BVH traversal: a stack of CLP_BVH_MAX_DEPTH entries (the builder guarantees
+ * no deeper tree), nearest child first. Nodes hold both children's boxes
+ * (Aila & Laine 2009), so each step tests two boxes from one 64-byte fetch. */
+
+typedef struct {
+    float t;
+    float b1, b2; /* barycentric weights of v1 and v2 */
+    int tri;      /* index into the leaf-ordered triangles, -1 for a miss */
+} Hit;
+
+inline int intersect_leaf(const RayPre* r, global const TriVerts* tris, uint first, uint count, Hit* hit) {
+    int found = 0;
+    for (uint i = first; i < first + count; ++i) {
+        global const TriVerts* tv = &tris[i];
+        float t, b1, b2;
+        if (intersect_triangle(r, load3g(tv->v0), load3g(tv->v1), load3g(tv->v2), hit->t, &t, &b1, &b2)) {
+            hit->t = t;
+            hit->b1 = b1;
+            hit->b2 = b2;
+            hit->tri = (int)i;
+            found = 1;
+        }
+    }
+    return found;
+}
+
+/* Closest hit in (0, tmax). *visits (may be NULL) counts nodes fetched, for
+ * the traversal heat map and benchmarks. When any_hit is set, returns at the
+ * first hit found (shadow rays): the compiler folds it for constant arguments. */
+inline Hit traverse_bvh(global const BvhNode* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
+                        int any_hit, uint* visits) {
+    Hit hit;
+    hit.t = tmax;
+    hit.tri = -1;
+    hit.b1 = hit.b2 = 0.0f;
+    int stack[CLP_BVH_MAX_DEPTH];
+    int sp = 0;
+    int node = 0;
+    for (;;) {
+        global const BvhNode* n = &nodes[node];
+        if (visits) ++*visits;
+        float t0 = intersect_box(r, load3g(n->lo0), load3g(n->hi0), hit.t);
+        float t1 = intersect_box(r, load3g(n->lo1), load3g(n->hi1), hit.t);
+        int c0 = n->child0, c1 = n->child1;
+        /* Leaves are intersected at once; only interior children are descended. */
+        if (t0 < INFINITY && c0 < 0) {
+            if (intersect_leaf(r, tris, (uint)~c0, n->count0, &hit) && any_hit) return hit;
+            t0 = INFINITY;
+        }
+        if (t1 < INFINITY && c1 < 0) {
+            if (intersect_leaf(r, tris, (uint)~c1, n->count1, &hit) && any_hit) return hit;
+            t1 = INFINITY;
+        }
+        /* A leaf hit may have shortened hit.t; a child entered beyond it is pruned. */
+        int go0 = t0 < hit.t, go1 = t1 < hit.t;
+        if (go0 && go1) {
+            int near = t0 <= t1 ? c0 : c1;
+            stack[sp++] = t0 <= t1 ? c1 : c0;
+            node = near;
+        } else if (go0) {
+            node = c0;
+        } else if (go1) {
+            node = c1;
+        } else {
+            if (sp == 0) break;
+            node = stack[--sp];
+        }
+    }
+    return hit;
+}

@@ -1,0 +1,70 @@
+// White furnace: inside a closed sphere of albedo a that emits Le everywhere,
+// every path gathers Le (1 + a + a^2 + ...), so every pixel's expectation is
+// Le (1 - a^(n+1)) / (1 - a) for paths of at most n bounces. The image mean
+// must match within the standard error that the image's own pixels give
+// (pixels are independent estimates of the same value).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "scene/shapes.hpp"
+#include "support/render_helpers.hpp"
+#include "support/statistics.hpp"
+
+using namespace clpath;
+
+namespace {
+
+Scene furnace(glm::vec3 albedo, glm::vec3 le) {
+    Scene s;
+    s.name = "furnace";
+    // Two-sided: the camera sees the sphere's inside.
+    const auto m = s.add_material("shell", emitter(le, true, albedo));
+    s.add_triangles(make_icosphere(3), m);
+    s.camera.eye = {0, 0, 0};
+    s.camera.target = {0.3f, 0.2f, 1};
+    s.camera.vfov_degrees = 90;
+    s.camera.width = 24;
+    s.camera.height = 24;
+    return s;
+}
+
+void check_furnace(std::uint32_t rr_rule, std::uint32_t max_depth) {
+    const glm::vec3 albedo(0.5f, 0.8f, 0.9f), le(1.0f, 0.5f, 0.25f);
+    RenderSettings st;
+    st.rr_rule = rr_rule;
+    st.max_depth = max_depth;
+    st.seed = 17;
+    RenderStats stats;
+    const auto img = test::render(furnace(albedo, le), st, 64, &stats).linear;
+    EXPECT_EQ(stats.nonfinite, 0u);
+    // Three channels, each tested at alpha = 1e-4 / 3 (Bonferroni).
+    const double z = test::normal_quantile_two_sided(1e-4 / 3);
+    for (int c = 0; c < 3; ++c) {
+        const double a = albedo[c];
+        // The thesis rule stops every path after max_depth - 1 bounces at most.
+        const int bounces = rr_rule == CLP_RR_DEPTH ? int(max_depth) - 1 : int(max_depth);
+        const double expected = le[c] * (1 - std::pow(a, bounces + 1)) / (1 - a);
+        const auto m = test::mean_error(test::channel(img, c));
+        EXPECT_NEAR(m.mean, expected, z * m.std_error)
+            << "channel " << c << " albedo " << a << ": mean " << m.mean << " +- " << m.std_error;
+        EXPECT_GT(m.std_error, 0.0);
+    }
+}
+
+}  // namespace
+
+TEST(WhiteFurnace, ThroughputRussianRoulette) { check_furnace(CLP_RR_THROUGHPUT, 64); }
+TEST(WhiteFurnace, ThesisDepthRussianRoulette) { check_furnace(CLP_RR_DEPTH, 64); }
+TEST(WhiteFurnace, NoRussianRouletteShortPaths) { check_furnace(CLP_RR_NONE, 5); }
+TEST(WhiteFurnace, DepthRuleIsBiasedAtTheThesisDepth) {
+    // The same check must fail to see a truncation it should see: with the
+    // thesis's 10 bounces and albedo 0.9, the truncated mean is far from Le/(1-a).
+    const glm::vec3 albedo(0.9f), le(1.0f);
+    RenderSettings st;
+    st.rr_rule = CLP_RR_DEPTH;
+    st.max_depth = 10;
+    const auto img = test::render(furnace(albedo, le), st, 64).linear;
+    const auto m = test::mean_error(test::channel(img, 0));
+    EXPECT_GT(std::fabs(m.mean - 1.0 / (1 - 0.9)), 10 * m.std_error);
+}

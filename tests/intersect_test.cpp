@@ -1,0 +1,166 @@
+// Ray/triangle intersection (kernels/intersect.cl) against a double-precision
+// reference, and watertightness on closed meshes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <glm/glm.hpp>
+
+#include "scene/shapes.hpp"
+#include "support/test_device.hpp"
+
+using namespace clpath;
+
+namespace {
+
+using dvec3 = glm::dvec3;
+
+// Möller–Trumbore in double: the reference hit, barycentrics and distance.
+struct RefHit {
+    bool hit = false;
+    double t = 0, b1 = 0, b2 = 0, det_rel = 0;
+};
+RefHit reference(dvec3 o, dvec3 d, dvec3 v0, dvec3 v1, dvec3 v2) {
+    RefHit r;
+    const dvec3 e1 = v1 - v0, e2 = v2 - v0, p = glm::cross(d, e2);
+    const double det = glm::dot(e1, p);
+    r.det_rel = std::fabs(det) / (glm::length(e1) * glm::length(e2) * glm::length(d));
+    if (det == 0) return r;
+    const dvec3 s = o - v0, q = glm::cross(s, e1);
+    r.b1 = glm::dot(s, p) / det;
+    r.b2 = glm::dot(d, q) / det;
+    r.t = glm::dot(e2, q) / det;
+    r.hit = r.b1 >= 0 && r.b2 >= 0 && r.b1 + r.b2 <= 1 && r.t > 0;
+    return r;
+}
+
+double gamma(int n) { return n * 0x1.0p-24 / (1 - n * 0x1.0p-24); }
+
+struct Results {
+    std::vector<float> out;  // hit, t, b1, b2 per ray
+};
+
+Results run_pairs(const std::vector<float>& rays, const std::vector<float>& tris) {
+    const std::uint32_t n = std::uint32_t(rays.size() / 6);
+    Kernel k = test::device().kernel(test::probe_program(), "probe_triangle");
+    Buffer rb = test::upload(rays), tb = test::upload(tris);
+    Buffer out = test::device().buffer(std::size_t(n) * 4 * sizeof(float), CL_MEM_READ_WRITE, "hits");
+    k.arg(0, rb).arg(1, tb).arg(2, out).arg(3, n);
+    test::run(k, n);
+    return {test::download<float>(out, std::size_t(n) * 4)};
+}
+
+}  // namespace
+
+TEST(RayTriangle, AgreesWithDoubleReference) {
+    std::mt19937 rng(42);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    const std::uint32_t n = 200000;
+    std::vector<float> rays, tris;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        glm::vec3 v[3];
+        for (auto& p : v) p = glm::vec3(u(rng), u(rng), u(rng));
+        // Aim at a random point near the triangle so about half the rays hit.
+        const float a = u(rng) * 0.8f + 0.5f, b = u(rng) * 0.8f + 0.5f;
+        const glm::vec3 target = v[0] + a * (v[1] - v[0]) + b * (v[2] - v[0]) * (1.0f - a);
+        const glm::vec3 o(u(rng) * 4, u(rng) * 4, u(rng) * 4);
+        const glm::vec3 d = glm::normalize(target - o);
+        for (int c = 0; c < 3; ++c) rays.push_back(o[c]);
+        for (int c = 0; c < 3; ++c) rays.push_back(d[c]);
+        for (auto& p : v)
+            for (int c = 0; c < 3; ++c) tris.push_back(p[c]);
+    }
+    const auto res = run_pairs(rays, tris).out;
+    int hits = 0, checked = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const dvec3 o(rays[6 * i], rays[6 * i + 1], rays[6 * i + 2]);
+        const dvec3 d(rays[6 * i + 3], rays[6 * i + 4], rays[6 * i + 5]);
+        const dvec3 v0(tris[9 * i], tris[9 * i + 1], tris[9 * i + 2]);
+        const dvec3 v1(tris[9 * i + 3], tris[9 * i + 4], tris[9 * i + 5]);
+        const dvec3 v2(tris[9 * i + 6], tris[9 * i + 7], tris[9 * i + 8]);
+        const RefHit ref = reference(o, d, v0, v1, v2);
+        if (ref.det_rel < 1e-3) continue;  // near-parallel: hit or miss are both right within rounding
+        // Rays closer to an edge than float rounding can resolve may go either way
+        // (the watertight test below covers them); the margin is a few ulps of the
+        // sheared coordinates, scale 1 here.
+        const double margin = 64 * 0x1.0p-24 / ref.det_rel;
+        const double b0 = 1 - ref.b1 - ref.b2;
+        const bool clear = std::fabs(ref.b1) > margin && std::fabs(ref.b2) > margin && std::fabs(b0) > margin;
+        if (!clear) continue;
+        ++checked;
+        ASSERT_EQ(res[4 * i] != 0, ref.hit) << "ray " << i << " t_ref " << ref.t;
+        if (!ref.hit) continue;
+        ++hits;
+        // t: the watertight test's rounding (PBR 4th ed. 6.8.4 bounds it by a few
+        // gamma terms times the sheared extents) plus 2.5 ulp for OpenCL's division;
+        // relative to the hit's distance scale, gamma(16) / det_rel bounds both.
+        const double scale = glm::length(v0 - o) + glm::length(v1 - o) + glm::length(v2 - o);
+        EXPECT_NEAR(res[4 * i + 1], ref.t, gamma(16) * scale / ref.det_rel) << "ray " << i;
+        EXPECT_NEAR(res[4 * i + 2], ref.b1, gamma(16) / ref.det_rel * 4) << "ray " << i;
+        EXPECT_NEAR(res[4 * i + 3], ref.b2, gamma(16) / ref.det_rel * 4) << "ray " << i;
+    }
+    EXPECT_GT(checked, int(n) * 8 / 10);
+    EXPECT_GT(hits, checked / 5);
+}
+
+TEST(RayTriangle, SharedEdgesAndVerticesLetNoRayThrough) {
+    // A closed icosphere, rays from its centre aimed exactly at every vertex and
+    // at points on every edge: each must hit at least one of the triangles.
+    const auto mesh = make_icosphere(3);
+    std::vector<glm::vec3> targets;
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (std::size_t t = 0; t < mesh.size(); t += 3)
+        for (int e = 0; e < 3; ++e) {
+            const glm::vec3 a = mesh[t + e], b = mesh[t + (e + 1) % 3];
+            targets.push_back(a);
+            targets.push_back(0.5f * (a + b));
+            const float s = u(rng);
+            targets.push_back(a + s * (b - a));
+        }
+    // Every (ray, triangle) pair: a ray "hits the mesh" if any triangle reports a hit.
+    const std::size_t tri_count = mesh.size() / 3;
+    std::vector<float> rays, tris;
+    const glm::vec3 centres[] = {{0, 0, 0}, {0.1f, -0.2f, 0.05f}};
+    for (glm::vec3 c : centres)
+        for (const auto& target : targets) {
+            const glm::vec3 d = glm::normalize(target - c);
+            for (std::size_t t = 0; t < tri_count; ++t) {
+                for (int k = 0; k < 3; ++k) rays.push_back(c[k]);
+                for (int k = 0; k < 3; ++k) rays.push_back(d[k]);
+                for (int v = 0; v < 3; ++v)
+                    for (int k = 0; k < 3; ++k) tris.push_back(mesh[t * 3 + v][k]);
+            }
+        }
+    const auto res = run_pairs(rays, tris).out;
+    const std::size_t ray_count = rays.size() / 6 / tri_count;
+    std::size_t leaks = 0;
+    for (std::size_t r = 0; r < ray_count; ++r) {
+        bool any = false;
+        for (std::size_t t = 0; t < tri_count && !any; ++t) any = res[4 * (r * tri_count + t)] != 0;
+        leaks += !any;
+    }
+    EXPECT_EQ(leaks, 0u) << "of " << ray_count << " rays aimed at vertices and edges";
+}
+
+TEST(RayTriangle, ParallelAndDegenerateAreMissesNotNaN) {
+    std::vector<float> rays = {
+        0, 0, 0, 1, 0, 0,        // in the triangle's plane
+        0.2f, 0.2f, -1, 0, 0, 1,  // zero-area triangle
+        0.2f, 0.2f, -1, 0, 0, 1,  // collinear triangle
+        0.25f, 0.25f, -1, -0.0f, 0.0f, 1,  // signed zeros in the direction: a hit
+    };
+    std::vector<float> tris = {
+        0, -1, 0, 1, 1, 0, -1, 1, 0,
+        0.2f, 0.2f, 0, 0.2f, 0.2f, 0, 0.2f, 0.2f, 0,
+        0, 0, 0, 0.5f, 0.5f, 0, 1, 1, 0,
+        0, 0, 0, 1, 0, 0, 0, 1, 0,
+    };
+    const auto res = run_pairs(rays, tris).out;
+    EXPECT_EQ(res[0], 0.0f);
+    EXPECT_EQ(res[4], 0.0f);
+    EXPECT_EQ(res[8], 0.0f);
+    EXPECT_EQ(res[12], 1.0f);
+    EXPECT_FLOAT_EQ(res[13], 1.0f);
+}

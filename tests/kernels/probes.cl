@@ -1,0 +1,98 @@
+/* Test-only entry points: each exposes one kernel function to the host tests,
+ * so the tests exercise the very code the renderer runs. */
+
+kernel void probe_struct_sizes(global uint* out) {
+    out[0] = sizeof(BvhNode);
+    out[1] = sizeof(TriVerts);
+    out[2] = sizeof(Material);
+    out[3] = sizeof(CameraData);
+    out[4] = sizeof(FrameParams);
+    out[5] = sizeof(Counters);
+    out[6] = sizeof(AccumPixel);
+}
+
+/* out[i * n + j]: the j-th number of stream (pixel = i, sample = sample). */
+kernel void probe_rng_stream(global float* out, uint count, uint n, uint sample, uint seed) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    Rng r = rng_seed(i, sample, seed);
+    for (uint j = 0; j < n; ++j) out[i * n + j] = rng_next(&r);
+}
+
+/* out[s * pixels + p]: the first number of stream (pixel p, sample s). */
+kernel void probe_rng_first(global float* out, uint pixels, uint samples, uint seed) {
+    uint i = get_global_id(0);
+    if (i >= pixels * samples) return;
+    Rng r = rng_seed(i % pixels, i / pixels, seed);
+    out[i] = rng_next(&r);
+}
+
+/* Cosine-weighted directions about +z from the generator's own numbers. */
+kernel void probe_cosine(global float* out, uint count, uint seed) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    Rng r = rng_seed(i, 0, seed);
+    float u1 = rng_next(&r), u2 = rng_next(&r);
+    float3 d = sample_cosine_hemisphere(u1, u2);
+    out[3 * i] = d.x;
+    out[3 * i + 1] = d.y;
+    out[3 * i + 2] = d.z;
+}
+
+/* Directions from a unit normal n[i] through the same frame code the materials use. */
+kernel void probe_cosine_about(global const float* normals, global float* out, uint count, uint seed) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    Rng r = rng_seed(i, 1, seed);
+    float u1 = rng_next(&r), u2 = rng_next(&r);
+    float3 n = load3g(normals + 3 * i);
+    float3 d = to_world(sample_cosine_hemisphere(u1, u2), n);
+    out[3 * i] = d.x;
+    out[3 * i + 1] = d.y;
+    out[3 * i + 2] = d.z;
+}
+
+/* Ray i (origin, direction: 6 floats) against triangle i (9 floats).
+ * out[4i..]: hit flag, t, b1, b2. */
+kernel void probe_triangle(global const float* rays, global const float* tris, global float* out, uint count) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    RayPre r = ray_prepare(load3g(rays + 6 * i), load3g(rays + 6 * i + 3));
+    float t = 0.0f, b1 = 0.0f, b2 = 0.0f;
+    int hit = intersect_triangle(&r, load3g(tris + 9 * i), load3g(tris + 9 * i + 3), load3g(tris + 9 * i + 6),
+                                 INFINITY, &t, &b1, &b2);
+    out[4 * i] = (float)hit;
+    out[4 * i + 1] = t;
+    out[4 * i + 2] = b1;
+    out[4 * i + 3] = b2;
+}
+
+/* Ray i against the BVH: closest hit (t, original triangle index or -1) and
+ * whether any hit exists before tmax[i]. */
+kernel void probe_trace(global const BvhNode* nodes, global const TriVerts* tris, global const float* rays,
+                        global const float* tmax, global float* out_t, global int* out_prim, global int* out_any,
+                        uint count) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    RayPre r = ray_prepare(load3g(rays + 6 * i), load3g(rays + 6 * i + 3));
+    Hit h = traverse_bvh(nodes, tris, &r, tmax[i], 0, 0);
+    out_t[i] = h.t;
+    out_prim[i] = h.tri >= 0 ? (int)tris[h.tri].prim : -1;
+    Hit a = traverse_bvh(nodes, tris, &r, tmax[i], 1, 0);
+    out_any[i] = a.tri >= 0;
+}
+
+/* Ray i against every triangle, no BVH: the reference for traversal tests.
+ * Same hit rule as traversal: the closest t, the first triangle on ties. */
+kernel void probe_brute(global const TriVerts* tris, uint tri_count, global const float* rays, global float* out_t,
+                        global int* out_prim, uint count) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    RayPre r = ray_prepare(load3g(rays + 6 * i), load3g(rays + 6 * i + 3));
+    Hit h;
+    h.t = INFINITY;
+    h.tri = -1;
+    intersect_leaf(&r, tris, 0, tri_count, &h);
+    out_t[i] = h.t;
+    out_prim[i] = h.tri >= 0 ? (int)tris[h.tri].prim : -1;
+}

@@ -1,0 +1,22 @@
+// The structs of kernels/shared_structs.h have the same size on host and device.
+#include <gtest/gtest.h>
+
+#include "shared_structs.h"
+#include "support/test_device.hpp"
+
+using namespace clpath;
+
+TEST(SharedStructs, SizesAgreeOnHostAndDevice) {
+    Kernel k = test::device().kernel(test::probe_program(), "probe_struct_sizes");
+    Buffer out = test::device().buffer(7 * sizeof(std::uint32_t), CL_MEM_READ_WRITE, "sizes");
+    k.arg(0, out);
+    test::run(k, 1);
+    auto sizes = test::download<std::uint32_t>(out, 7);
+    EXPECT_EQ(sizes[0], sizeof(BvhNode));
+    EXPECT_EQ(sizes[1], sizeof(TriVerts));
+    EXPECT_EQ(sizes[2], sizeof(Material));
+    EXPECT_EQ(sizes[3], sizeof(CameraData));
+    EXPECT_EQ(sizes[4], sizeof(FrameParams));
+    EXPECT_EQ(sizes[5], sizeof(Counters));
+    EXPECT_EQ(sizes[6], sizeof(AccumPixel));
+}

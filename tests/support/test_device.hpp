@@ -1,0 +1,33 @@
+#pragma once
+// The OpenCL device tests run on: $CLPATH_DEVICE if set, else the default
+// choice (PoCL on a machine without a GPU, as in CI). One context per test program.
+#include <string>
+#include <vector>
+
+#include "cl/context.hpp"
+#include "cl/program.hpp"
+
+namespace clpath::test {
+
+Context& device();
+
+// A program made of the renderer's kernels plus tests/kernels/probes.cl,
+// built once per test program.
+cl_program probe_program();
+
+// Runs a kernel over n work-items and waits.
+void run(const Kernel& k, std::size_t n);
+
+template <class T>
+Buffer upload(const std::vector<T>& v, const std::string& what = "test input") {
+    return device().buffer(v.size() * sizeof(T), CL_MEM_READ_WRITE, what, v.data());
+}
+
+template <class T>
+std::vector<T> download(const Buffer& b, std::size_t n) {
+    std::vector<T> v(n);
+    device().read(b, v);
+    return v;
+}
+
+}  // namespace clpath::test

@@ -1,0 +1,27 @@
+#!/bin/sh
+# Installs everything clpath needs to build, test and benchmark, from Debian packages only.
+# Run as root on Debian 12. Safe to run again: apt skips what is already there.
+set -eu
+export DEBIAN_FRONTEND=noninteractive
+if [ "$(id -u)" -ne 0 ]; then
+    echo "install-deps.sh: run as root (it calls apt-get install)" >&2
+    exit 1
+fi
+packages="
+    build-essential cmake pkg-config clang
+    pocl-opencl-icd ocl-icd-opencl-dev opencl-headers clinfo
+    libglm-dev libglfw3-dev libopenimageio-dev openimageio-tools
+    libtinyobjloader-dev nlohmann-json3-dev libcli11-dev libgtest-dev
+    xvfb libimgui-dev glmark2-data
+    python3-numpy python3-matplotlib
+"
+missing=""
+for p in $packages; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+if [ -n "$missing" ]; then
+    apt-get update -qq
+    # shellcheck disable=SC2086
+    apt-get install -y -qq --no-install-recommends $missing >/dev/null
+fi
+echo "install-deps.sh: all packages present"
