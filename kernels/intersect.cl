@@ -93,14 +93,20 @@ inline int intersect_triangle(const RayPre* r, float3 v0, float3 v1, float3 v2, 
     return 1;
 }
 
-/* Slab test of one box. A zero direction component gives an infinite 1/d, and
- * the product 0 * inf (origin on the slab plane) gives NaN: fmin/fmax return
- * their other operand then, which treats that axis as a miss for a ray lying
- * exactly in a box face; that ray is tangent to everything the face bounds.
+/* Slab test of one box. A zero direction component gives an infinite 1/d;
+ * for an origin exactly on that slab's plane the product 0 * inf is NaN. Such
+ * a ray lies in the box's face, and a closed box contains it: the NaN is
+ * replaced by the infinity of the opposite sign to the other plane's
+ * distance, which makes that axis's interval (-inf, inf), whatever the sign
+ * of the zero. (Without this, rays in a coordinate plane through a vertex leak
+ * between the boxes on both sides of the plane.)
  * Returns the entry distance, or +INFINITY for a miss. */
 inline float intersect_box(const RayPre* r, float3 lo, float3 hi, float tmax) {
     float3 t0 = (lo - r->org) * r->inv_dir;
     float3 t1 = (hi - r->org) * r->inv_dir;
+    t0 = select(t0, -t1, isnan(t0));
+    t1 = select(t1, -t0, isnan(t1));
+    /* fmin/fmax drop a NaN that remains (a flat box with the origin in it): that axis then bounds nothing. */
     float3 tn = fmin(t0, t1), tf = fmax(t0, t1);
     float tnear = fmax(fmax(tn.x, tn.y), fmax(tn.z, 0.0f));
     /* Ize (2013), "Robust BVH Ray Traversal": widen the exit distance by the

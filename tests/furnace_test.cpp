@@ -46,9 +46,15 @@ void check_furnace(std::uint32_t rr_rule, std::uint32_t max_depth) {
         const int bounces = rr_rule == CLP_RR_DEPTH ? int(max_depth) - 1 : int(max_depth);
         const double expected = le[c] * (1 - std::pow(a, bounces + 1)) / (1 - a);
         const auto m = test::mean_error(test::channel(img, c));
-        EXPECT_NEAR(m.mean, expected, z * m.std_error)
+        // Without roulette every path has the same value (zero variance): then
+        // float rounding bounds the error, about one rounding per operation on
+        // the path (gamma(n) of PBR 6.8.1 with n = 4 per bounce, plus the mean).
+        const double rounding = expected * (4 * (bounces + 2)) * 0x1.0p-24;
+        EXPECT_NEAR(m.mean, expected, z * m.std_error + rounding)
             << "channel " << c << " albedo " << a << ": mean " << m.mean << " +- " << m.std_error;
-        EXPECT_GT(m.std_error, 0.0);
+        if (rr_rule == CLP_RR_NONE) {
+            EXPECT_LT(m.std_error, rounding);
+        }
     }
 }
 

@@ -1,0 +1,95 @@
+// The BVH builder (host/bvh/): structure invariants on ordinary and
+// degenerate meshes, the depth bound, determinism across thread counts.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include "bvh/bvh.hpp"
+#include "scene/shapes.hpp"
+
+using namespace clpath;
+
+namespace {
+
+std::vector<glm::vec3> soup(std::size_t n, std::uint32_t seed, float size = 0.1f) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1, 1);
+    std::vector<glm::vec3> v;
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::vec3 c(u(rng), u(rng), u(rng));
+        for (int k = 0; k < 3; ++k) v.push_back(c + size * glm::vec3(u(rng), u(rng), u(rng)));
+    }
+    return v;
+}
+
+Bvh checked(const std::vector<glm::vec3>& v, BvhBuildOptions o = {}) {
+    Bvh b = build_bvh(v, o);
+    EXPECT_NO_THROW(check_bvh(b, v.size() / 3));
+    EXPECT_LE(b.stats.max_depth, CLP_BVH_MAX_DEPTH);
+    return b;
+}
+
+}  // namespace
+
+TEST(BvhBuild, InvariantsOnOrdinaryMeshes) {
+    checked(soup(10000, 1));
+    checked(make_icosphere(5));
+    checked(transformed(make_box(), shape_transform({1, 2, 3}, {0.1f, 0.2f, 0.3f}, {2, 0.5f, 1})));
+}
+
+TEST(BvhBuild, OneAndTwoTriangles) {
+    const Bvh one = checked(soup(1, 2));
+    EXPECT_EQ(one.nodes.size(), 1u);
+    EXPECT_EQ(one.nodes[0].count1, 0u) << "the second slot of a leaf root is empty";
+    checked(soup(2, 3));
+}
+
+TEST(BvhBuild, AllCentroidsEqual) {
+    // 100k triangles around one centre: the SAH finds no split; median splits must.
+    std::vector<glm::vec3> v;
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<float> u(0.1f, 1);
+    for (int i = 0; i < 100000; ++i) {
+        const glm::vec3 a(u(rng), u(rng), u(rng));
+        v.insert(v.end(), {a, -a, glm::vec3(a.y, -a.x, 0) - glm::vec3(a.y, -a.x, 0)});
+    }
+    const Bvh b = checked(v);
+    EXPECT_LE(b.stats.leaf_count * 4, v.size() / 3 * 2) << "leaves stay small";
+}
+
+TEST(BvhBuild, IdenticalAndDegenerateTriangles) {
+    std::vector<glm::vec3> same;
+    for (int i = 0; i < 200000; ++i) same.insert(same.end(), {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    checked(same);
+    std::vector<glm::vec3> degenerate;
+    for (int i = 0; i < 1000; ++i) {
+        const float x = float(i);
+        degenerate.insert(degenerate.end(), {{x, 0, 0}, {x, 0, 0}, {x, 0, 0}});            // a point
+        degenerate.insert(degenerate.end(), {{x, 0, 0}, {x + 1, 1, 1}, {x + 2, 2, 2}});    // collinear
+        degenerate.insert(degenerate.end(), {{x, 0, 0}, {x + 1e6f, 0, 0}, {x, 1e-6f, 0}}); // needle
+    }
+    checked(degenerate);
+}
+
+TEST(BvhBuild, DeterministicAcrossThreadCounts) {
+    const auto v = soup(300000, 5, 0.02f);
+    BvhBuildOptions one, four;
+    one.threads = 1;
+    four.threads = 4;
+    const Bvh a = checked(v, one), b = checked(v, four);
+    ASSERT_EQ(a.nodes.size(), b.nodes.size());
+    EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)), 0);
+    EXPECT_EQ(std::memcmp(a.triangles.data(), b.triangles.data(), a.triangles.size() * sizeof(TriVerts)), 0);
+}
+
+TEST(BvhBuild, SahBeatsMedianSplits) {
+    // With 2 bins the SAH sees only the midpoint split; more bins must find cheaper trees.
+    const auto v = soup(50000, 6, 0.05f);
+    BvhBuildOptions coarse, fine;
+    coarse.bins = 2;
+    fine.bins = 32;
+    EXPECT_LT(checked(v, fine).stats.sah_cost, checked(v, coarse).stats.sah_cost);
+}
+
+TEST(BvhBuild, EmptyInputIsAnError) { EXPECT_THROW(build_bvh({}), std::invalid_argument); }
