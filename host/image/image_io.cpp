@@ -30,7 +30,9 @@ fs::path temp_beside(const fs::path& p) {
     return p.parent_path() / ("." + p.stem().string() + ".tmp" + std::to_string(::getpid()) + p.extension().string());
 }
 
+#ifdef CLPATH_WITH_OIIO
 float srgb_decode(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
+#endif
 
 }  // namespace
 

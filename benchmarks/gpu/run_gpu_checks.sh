@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# One batch on the lent GPU machine (see ../shared/docs/gpu.md): registers the
+# NVIDIA OpenCL driver, lists devices, runs every test program on the GPU,
+# renders the default scene on the GPU and on the machine's CPU through PoCL,
+# and times a longer GPU render. Logs and images go to $OUT.
+# Usage: benchmarks/gpu/run_gpu_checks.sh BUILD_DIR   (a -DCLPATH_WITH_OIIO=OFF -DCLPATH_WITH_VIEWER=OFF build)
+set -u
+B=${1:-build-gpu}
+OUT=${OUT:-/tmp/clpath-gpu-out}
+mkdir -p "$OUT" /etc/OpenCL/vendors
+echo /usr/lib/libnvidia-opencl.so.1 > /etc/OpenCL/vendors/nvidia.icd
+export CLPATH_CACHE_DIR=/tmp/clpath-cache
+{
+  echo "== date: $(date -u +%FT%TZ)  host: $(hostname)"
+  nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader 2>/dev/null
+  "$B/clpath" devices
+} 2>&1 | tee "$OUT/devices.txt"
+
+echo "== tests on the GPU" | tee "$OUT/gpu-tests.txt"
+for t in "$B"/tests/*_test; do
+  echo "-- $(basename "$t")"
+  CLPATH_DEVICE=nvidia timeout 300 "$t" --gtest_brief=1 2>&1 | tail -n 4
+done 2>&1 | tee -a "$OUT/gpu-tests.txt"
+
+echo "== renders" | tee "$OUT/summary.txt"
+# Same scene and settings on both devices, independent seeds, for the statistical comparison.
+"$B/clpath" render --device nvidia --spp 256 --seed 1 -q -o "$OUT/cornell-gpu-256.pfm" 2>&1 | tee -a "$OUT/summary.txt"
+"$B/clpath" render --device portable --spp 256 --seed 2 -q -o "$OUT/cornell-pocl-256.pfm" 2>&1 | tee -a "$OUT/summary.txt"
+# Speed: steady state on the GPU.
+"$B/clpath" render --device nvidia --spp 4096 --seed 3 -q -o "$OUT/cornell-gpu-4096.pfm" 2>&1 | tee -a "$OUT/summary.txt"
+"$B/clpath" render --device nvidia --spp 1024 --seed 4 --rr depth --max-depth 10 -q -o /tmp/thesis-rule.pfm 2>&1 | tee -a "$OUT/summary.txt"
