@@ -4,7 +4,6 @@
 /* Radiance emitted towards a ray that hit the surface from the front
  * (front = the side the triangle's winding faces) or the back. */
 inline float3 material_emission(global const Material* m, int front) {
-    if (m->kind != CLP_MAT_EMISSIVE) return (float3)(0.0f);
     if (!front && !(m->flags & CLP_MATF_TWO_SIDED_EMISSION)) return (float3)(0.0f);
     return load3g(m->emission);
 }

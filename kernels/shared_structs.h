@@ -24,9 +24,24 @@ typedef std::uint32_t uint;
  * builder forces balanced splits before it gets there (host/bvh/). */
 #define CLP_BVH_MAX_DEPTH 64
 
-/* Material kinds. A program is compiled only with the kinds a scene uses. */
-#define CLP_MAT_DIFFUSE 0u
-#define CLP_MAT_EMISSIVE 1u
+/* Material kinds: how a surface scatters. Any kind may also emit (emission > 0);
+ * a pure emitter is a diffuse material of albedo 0. A program is compiled only
+ * with the kinds a scene uses (CLP_HAS_<KIND>). */
+#define CLP_MAT_DIFFUSE 0u    /* Lambert, albedo */
+#define CLP_MAT_MIRROR 1u     /* perfect specular reflection tinted by albedo */
+#define CLP_MAT_CONDUCTOR 2u  /* GGX microfacet reflection: roughness, Schlick Fresnel with F0 = albedo */
+#define CLP_MAT_DIELECTRIC 3u /* glass: Fresnel reflection and refraction, ior; rough when roughness > 0 */
+#define CLP_MAT_KIND_COUNT 4u
+
+/* Integrators (RenderSettings.integrator); each is compiled in alone. */
+#define CLP_INTEGRATOR_PATH 0u      /* next-event estimation + MIS */
+#define CLP_INTEGRATOR_PATH_BSDF 1u /* BSDF sampling only, as the thesis renderer */
+#define CLP_INTEGRATOR_AO 2u        /* ambient occlusion, cosine-weighted, max distance */
+#define CLP_INTEGRATOR_NORMALS 3u   /* shading normal, mapped to [0,1] */
+#define CLP_INTEGRATOR_DEPTH 4u     /* distance along the camera ray */
+#define CLP_INTEGRATOR_ALBEDO 5u    /* first-hit albedo */
+#define CLP_INTEGRATOR_HEATMAP 6u   /* BVH nodes visited by the camera ray, false colour */
+#define CLP_INTEGRATOR_COUNT 7u
 
 /* Material flags. */
 #define CLP_MATF_TWO_SIDED_EMISSION 1u /* emits from the back face too */
@@ -67,10 +82,14 @@ typedef struct {
 
 /* A material: one record for every kind, read only by the kinds that use it. */
 typedef struct {
-    float albedo[3];   /* diffuse reflectance; 0 for a pure emitter */
+    float albedo[3];   /* reflectance (diffuse), tint (mirror, glass), F0 (conductor); 0: does not reflect */
     uint kind;         /* CLP_MAT_* */
     float emission[3]; /* emitted radiance (W sr^-1 m^-2 per channel) */
     uint flags;        /* CLP_MATF_* */
+    float roughness;   /* conductor and dielectric: GGX alpha = roughness^2; 0 = smooth */
+    float ior;         /* dielectric: index of refraction inside / outside */
+    uint pad0;
+    uint pad1;
 } Material;
 
 /* Pinhole camera, already turned into a ray basis by the host:
@@ -119,7 +138,7 @@ typedef struct {
 
 CLP_STATIC_ASSERT(sizeof(BvhNode) == 64, bvh_node_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(TriVerts) == 48, tri_verts_is_48_bytes);
-CLP_STATIC_ASSERT(sizeof(Material) == 32, material_is_32_bytes);
+CLP_STATIC_ASSERT(sizeof(Material) == 48, material_is_48_bytes);
 CLP_STATIC_ASSERT(sizeof(CameraData) == 64, camera_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(FrameParams) == 96, frame_params_is_96_bytes);
 CLP_STATIC_ASSERT(sizeof(Counters) == 16, counters_is_16_bytes);

@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,17 +12,22 @@
 #include "image/image.hpp"
 #include "render/renderer.hpp"
 #include "scene/builtin_scenes.hpp"
+#include "scene/scene_loader.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
 namespace {
 
+// Options left unset (nullopt) take the scene file's value, then the default.
 struct RenderOptions {
     std::string scene = "cornell";
-    std::uint64_t spp = 0;
+    std::optional<std::uint64_t> spp;
     double time_limit = 0;
-    std::uint32_t max_depth = 16, seed = 0, rr_min_depth = 3;
-    std::string rr = "throughput";
+    std::optional<std::uint32_t> max_depth, seed;
+    std::uint32_t rr_min_depth = 3;
+    std::optional<std::string> rr, integrator;
+    std::optional<float> ao_distance;
+    bool all_features = false;
     int width = 0, height = 0;
     std::vector<std::string> outputs;
     std::string device;
@@ -29,15 +35,20 @@ struct RenderOptions {
     bool quiet = false;
 };
 
-std::uint32_t rr_rule(const std::string& name) {
-    if (name == "throughput") return CLP_RR_THROUGHPUT;
-    if (name == "depth") return CLP_RR_DEPTH;
-    return CLP_RR_NONE;
-}
-
 int run_render(const RenderOptions& o) {
     // Everything that can be checked before rendering is checked first.
-    Scene scene = builtin_scene(o.scene);
+    Scene scene = load_scene(o.scene);
+    if (o.spp) scene.render.spp = std::uint32_t(std::min<std::uint64_t>(*o.spp, kMaxSamplesPerPixel));
+    if (o.max_depth) scene.render.max_depth = *o.max_depth;
+    if (o.seed) scene.render.seed = *o.seed;
+    if (o.rr) scene.render.russian_roulette = *o.rr;
+    if (o.integrator) scene.render.integrator = *o.integrator;
+    if (o.ao_distance) scene.render.ao_distance = *o.ao_distance;
+    RenderSettings settings = settings_from_scene(scene.render);
+    settings.rr_min_depth = o.rr_min_depth;
+    settings.all_features = o.all_features;
+    settings.bvh.max_leaf_size = o.leaf_size;
+    settings.bvh.bins = o.bins;
     if (o.width) scene.camera.width = o.width;
     if (o.height) scene.camera.height = o.height;
     std::vector<std::string> outputs = o.outputs;
@@ -47,23 +58,18 @@ int run_render(const RenderOptions& o) {
         outputs = {"out/" + scene.name + ".png", "out/" + scene.name + ".exr"};
     }
     for (const auto& out : outputs) check_output_path(out);
-    const std::uint64_t spp = (o.spp == 0 && o.time_limit == 0) ? 64 : o.spp;
+    // --time alone renders until the time is up; --spp with it caps the samples.
+    const std::uint64_t spp = o.spp ? *o.spp : (o.time_limit > 0 ? 0 : scene.render.spp);
     if (!scene.has_emitter())
         std::fprintf(stderr, "clpath: warning: scene '%s' has no emitter; the image will be black\n",
                      scene.name.c_str());
 
     const DeviceInfo device = select_device(o.device);
     Context ctx(device);
-    RenderSettings settings;
-    settings.max_depth = o.max_depth;
-    settings.seed = o.seed;
-    settings.rr_rule = rr_rule(o.rr);
-    settings.rr_min_depth = o.rr_min_depth;
-    settings.bvh.max_leaf_size = o.leaf_size;
-    settings.bvh.bins = o.bins;
     if (!o.quiet)
-        std::fprintf(stderr, "clpath: rendering '%s' (%zu triangles) at %dx%d on %s\n", scene.name.c_str(),
-                     scene.triangle_count(), scene.camera.width, scene.camera.height, device.describe().c_str());
+        std::fprintf(stderr, "clpath: rendering '%s' (%zu triangles) at %dx%d with '%s' on %s\n", scene.name.c_str(),
+                     scene.triangle_count(), scene.camera.width, scene.camera.height,
+                     integrator_name(settings.integrator), device.describe().c_str());
     Renderer renderer(ctx, scene, settings);
     if (!o.quiet)
         std::fprintf(stderr, "clpath: %s; kernels %s in %.2f s\n", describe(renderer.bvh_stats()).c_str(),
@@ -95,9 +101,9 @@ int run_render(const RenderOptions& o) {
     const RenderStats& st = renderer.stats();
     const double samples = double(st.samples_per_pixel) * scene.camera.width * scene.camera.height;
     std::printf(
-        "summary: device=\"%s\" triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f spp=%llu "
+        "summary: device=\"%s\" integrator=%s triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f spp=%llu "
         "render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu\n",
-        device.name.c_str(), renderer.triangle_count(), renderer.bvh_stats().build_ms, renderer.bvh_stats().node_count,
+        device.name.c_str(), integrator_name(settings.integrator), renderer.triangle_count(), renderer.bvh_stats().build_ms, renderer.bvh_stats().node_count,
         renderer.bvh_stats().sah_cost, (unsigned long long)st.samples_per_pixel, wall, samples / wall * 1e-6,
         double(st.rays) / wall * 1e-6, (unsigned long long)st.rays, (unsigned long long)st.nonfinite);
     if (st.nonfinite)
@@ -113,20 +119,26 @@ Command add_render_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("render", "Render a scene progressively and write the image");
     std::string names;
     for (const auto& n : builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
-    cmd->add_option("scene", o->scene, "Scene to render (built-in: " + names + ")")->capture_default_str();
-    cmd->add_option("--spp", o->spp, "Samples per pixel (default 64, or unlimited with --time)")
+    cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj) or built-in scene (" + names + ")")
+        ->capture_default_str();
+    cmd->add_option("--spp", o->spp, "Samples per pixel (default: the scene's, else 64; unlimited with --time)")
         ->check(CLI::Range(std::uint64_t(1), kMaxSamplesPerPixel));
     cmd->add_option("--time", o->time_limit, "Stop after this many seconds")->check(CLI::PositiveNumber);
-    cmd->add_option("--max-depth", o->max_depth, "Maximum bounces (0: emitters only)")
-        ->check(CLI::Range(0, 1024))
-        ->capture_default_str();
-    cmd->add_option("--rr", o->rr, "Russian roulette: throughput (unbiased), depth (the thesis rule), none")
-        ->check(CLI::IsMember({"throughput", "depth", "none"}))
-        ->capture_default_str();
+    cmd->add_option("--max-depth", o->max_depth, "Maximum bounces (0: emitters only; default 16)")
+        ->check(CLI::Range(0, 1024));
+    cmd->add_option("--rr", o->rr, "Russian roulette: throughput (default, unbiased), depth (the thesis rule), none")
+        ->check(CLI::IsMember(rr_rule_names()));
+    cmd->add_option("--integrator,-i", o->integrator, "Integrator: path (default: NEE + MIS), path-bsdf, ao, "
+                    "or a debug view: normals, depth, albedo, heatmap")
+        ->check(CLI::IsMember(integrator_names()));
+    cmd->add_option("--ao-distance", o->ao_distance, "Ambient occlusion ray length (default: 1/10 of the scene size)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_flag("--all-features", o->all_features,
+                  "Compile every material, light and integrator feature in (for comparison with the specialised kernels)");
     cmd->add_option("--rr-min-depth", o->rr_min_depth, "Bounces before throughput roulette starts")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();
-    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Random seed (default 0)");
     cmd->add_option("--width", o->width, "Image width (default: the scene's)")->check(CLI::Range(1, 16384));
     cmd->add_option("--height", o->height, "Image height (default: the scene's)")->check(CLI::Range(1, 16384));
     cmd->add_option("--out,-o", o->outputs,

@@ -37,6 +37,7 @@ Renderer::Renderer(Context& ctx, const Scene& scene, const RenderSettings& setti
 
     Bvh bvh = build_bvh(scene.vertices, settings.bvh);
     bvh_stats_ = bvh.stats;
+    bvh_nodes_ = bvh.nodes;
 
     const std::size_t pixels = std::size_t(camera_.width) * camera_.height;
     ctx.check_fits({{"BVH nodes", bvh.nodes.size() * sizeof(BvhNode)},
@@ -155,11 +156,16 @@ void Renderer::add_samples(std::uint32_t n) {
     }
 }
 
-RenderedImage Renderer::resolve(float exposure) {
+void Renderer::resolve_on_device(float exposure) {
     const std::uint32_t pixels = std::uint32_t(camera_.width) * std::uint32_t(camera_.height);
     const float inv = stats_.samples_per_pixel ? float(1.0 / double(stats_.samples_per_pixel)) : 0.0f;
     resolve_.arg(0, accum_).arg(1, pixels).arg(2, inv).arg(3, exposure).arg(4, linear_).arg(5, srgb_);
     ctx_.launch(resolve_, pixels, 0);
+}
+
+RenderedImage Renderer::resolve(float exposure) {
+    const std::uint32_t pixels = std::uint32_t(camera_.width) * std::uint32_t(camera_.height);
+    resolve_on_device(exposure);
     std::vector<float> rgba(std::size_t(pixels) * 4);
     RenderedImage out;
     out.srgb8.resize(std::size_t(pixels) * 4);

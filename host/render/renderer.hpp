@@ -8,20 +8,11 @@
 #include "cl/context.hpp"
 #include "cl/program.hpp"
 #include "image/image.hpp"
+#include "render/settings.hpp"
 #include "scene/scene.hpp"
 
 namespace clpath {
 
-struct RenderSettings {
-    std::uint32_t max_depth = 16;  // bounces; 0 shows emitters only
-    std::uint32_t rr_rule = CLP_RR_THROUGHPUT;
-    std::uint32_t rr_min_depth = 3;  // bounces before throughput roulette starts
-    std::uint32_t seed = 0;
-    // Launches are sized to take about this long: short enough for a GPU
-    // driver's watchdog and an interactive viewer, long enough to keep a device busy.
-    double target_launch_seconds = 0.1;
-    BvhBuildOptions bvh;
-};
 
 struct RenderStats {
     std::uint64_t samples_per_pixel = 0;
@@ -48,7 +39,15 @@ public:
     void set_camera(const Camera& camera);
     void set_settings(const RenderSettings& settings);  // takes effect after reset
 
+    // The mean, scaled by exposure, as linear float and 8-bit sRGB, read back.
     RenderedImage resolve(float exposure = 1.0f);
+    // The same, left on the device in srgb_buffer() (RGBA8, row 0 at the top)
+    // and linear_buffer() (RGBA float): for a viewer that shares them with OpenGL.
+    void resolve_on_device(float exposure = 1.0f);
+    const Buffer& srgb_buffer() const { return srgb_; }
+    const Buffer& linear_buffer() const { return linear_; }
+    // The flattened BVH, kept on the host for the viewer's box overlay.
+    const std::vector<BvhNode>& bvh_nodes() const { return bvh_nodes_; }
 
     const RenderStats& stats() const { return stats_; }
     const BvhStats& bvh_stats() const { return bvh_stats_; }
@@ -66,6 +65,7 @@ private:
     RenderSettings settings_;
     Camera camera_;
     BvhStats bvh_stats_;
+    std::vector<BvhNode> bvh_nodes_;
     std::size_t triangle_count_ = 0;
     Buffer nodes_, tris_, tri_material_, materials_, params_, accum_, counters_, linear_, srgb_;
     Program program_;

@@ -53,11 +53,12 @@ void Scene::add_triangles(const std::vector<glm::vec3>& tris, std::uint32_t mate
 }
 
 bool Scene::has_emitter() const {
+    if (!lights.empty() || environment.emits()) return true;
     std::vector<bool> used(materials.size(), false);
-    for (auto m : triangle_material) used[m] = true;
+    for (auto m : triangle_material)
+        if (m < used.size()) used[m] = true;
     for (std::size_t i = 0; i < materials.size(); ++i)
-        if (used[i] && materials[i].kind == CLP_MAT_EMISSIVE &&
-            (materials[i].emission[0] > 0 || materials[i].emission[1] > 0 || materials[i].emission[2] > 0))
+        if (used[i] && (materials[i].emission[0] > 0 || materials[i].emission[1] > 0 || materials[i].emission[2] > 0))
             return true;
     return false;
 }
@@ -69,9 +70,33 @@ Material diffuse(glm::vec3 albedo) {
     return m;
 }
 
+Material mirror(glm::vec3 tint) {
+    Material m{};
+    m.kind = CLP_MAT_MIRROR;
+    store3(m.albedo, tint);
+    return m;
+}
+
+Material conductor(glm::vec3 f0, float roughness) {
+    Material m{};
+    m.kind = CLP_MAT_CONDUCTOR;
+    store3(m.albedo, f0);
+    m.roughness = roughness;
+    return m;
+}
+
+Material dielectric(float ior, float roughness, glm::vec3 tint) {
+    Material m{};
+    m.kind = CLP_MAT_DIELECTRIC;
+    store3(m.albedo, tint);
+    m.ior = ior;
+    m.roughness = roughness;
+    return m;
+}
+
 Material emitter(glm::vec3 radiance, bool two_sided, glm::vec3 albedo) {
     Material m{};
-    m.kind = CLP_MAT_EMISSIVE;
+    m.kind = CLP_MAT_DIFFUSE;
     store3(m.emission, radiance);
     store3(m.albedo, albedo);
     m.flags = two_sided ? CLP_MATF_TWO_SIDED_EMISSION : 0u;

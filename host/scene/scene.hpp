@@ -24,6 +24,37 @@ struct Camera {
 // (eye == target, up parallel to the view direction, fov outside (0, 180)).
 CameraData camera_data(const Camera& camera);
 
+// A delta light, reached only through next-event estimation.
+struct PunctualLight {
+    enum class Type { Point, Spot, Directional };
+    Type type = Type::Point;
+    glm::vec3 position{0};       // point, spot
+    glm::vec3 direction{0, -1, 0};  // spot axis; for directional, the way the light travels
+    glm::vec3 intensity{1};      // W/sr (point, spot); irradiance W/m^2 (directional)
+    float spot_inner_degrees = 30, spot_outer_degrees = 45;  // half-angles; smooth falloff between
+};
+
+// What a ray that leaves the scene sees: a constant colour, or an
+// equirectangular (latitude-longitude) HDR image times a scale.
+struct Environment {
+    glm::vec3 color{0};  // radiance when there is no image
+    std::string image;   // path to an equirectangular image (read through OpenImageIO); empty: none
+    float scale = 1;     // multiplies the image
+    float rotation_degrees = 0;  // about +y
+    bool importance_sampled = true;
+    bool emits() const { return !image.empty() || color.x > 0 || color.y > 0 || color.z > 0; }
+};
+
+// Render settings a scene file may carry; the command line overrides them.
+struct SceneRenderDefaults {
+    std::uint32_t spp = 64;
+    std::uint32_t max_depth = 16;
+    std::string russian_roulette = "throughput";  // none | throughput | depth
+    std::string integrator = "path";              // see render/integrators.hpp
+    std::uint32_t seed = 0;
+    float ao_distance = 0;                        // 0: a tenth of the scene's bounding-box diagonal
+};
+
 struct Scene {
     std::string name;
     // Three vertices per triangle; a triangle's front face is the side from
@@ -32,17 +63,26 @@ struct Scene {
     std::vector<std::uint32_t> triangle_material;  // one per triangle
     std::vector<Material> materials;
     std::vector<std::string> material_names;  // parallel to materials
+    // Empty (flat shading), or three per triangle, parallel to vertices.
+    std::vector<glm::vec3> normals;
+    std::vector<PunctualLight> lights;
+    Environment environment;
     Camera camera;
+    SceneRenderDefaults render;
 
     std::size_t triangle_count() const { return triangle_material.size(); }
     // Adds a material and returns its index; names must be unique.
     std::uint32_t add_material(const std::string& name, const Material& m);
     // Appends triangles (3 vertices each) with one material.
     void add_triangles(const std::vector<glm::vec3>& tris, std::uint32_t material);
+    // Anything that puts light in: an emissive triangle, a punctual light, an environment.
     bool has_emitter() const;
 };
 
 Material diffuse(glm::vec3 albedo);
+Material mirror(glm::vec3 tint = glm::vec3(1));
+Material conductor(glm::vec3 f0, float roughness);
+Material dielectric(float ior, float roughness = 0, glm::vec3 tint = glm::vec3(1));
 // A one-sided emitter unless two_sided; albedo 0: it does not reflect.
 Material emitter(glm::vec3 radiance, bool two_sided = false, glm::vec3 albedo = glm::vec3(0));
 

@@ -1,0 +1,45 @@
+#include "render/settings.hpp"
+
+#include "util/error.hpp"
+
+namespace clpath {
+namespace {
+std::uint32_t find_name(const std::vector<std::string>& names, const std::string& name, const char* what) {
+    for (std::size_t i = 0; i < names.size(); ++i)
+        if (names[i] == name) return std::uint32_t(i);
+    std::string choices;
+    for (const auto& n : names) choices += (choices.empty() ? "" : ", ") + n;
+    throw Error("unknown " + std::string(what) + " '" + name + "' (choose one of: " + choices + ")");
+}
+}  // namespace
+
+const std::vector<std::string>& integrator_names() {
+    // Indexed by CLP_INTEGRATOR_*.
+    static const std::vector<std::string> names{"path", "path-bsdf", "ao", "normals", "depth", "albedo", "heatmap"};
+    static_assert(CLP_INTEGRATOR_COUNT == 7);
+    return names;
+}
+
+const std::vector<std::string>& rr_rule_names() {
+    static const std::vector<std::string> names{"none", "throughput", "depth"};  // CLP_RR_*
+    return names;
+}
+
+std::uint32_t parse_integrator(const std::string& name) { return find_name(integrator_names(), name, "integrator"); }
+std::uint32_t parse_rr_rule(const std::string& name) {
+    return find_name(rr_rule_names(), name, "Russian roulette rule");
+}
+const char* integrator_name(std::uint32_t i) { return integrator_names().at(i).c_str(); }
+const char* rr_rule_name(std::uint32_t r) { return rr_rule_names().at(r).c_str(); }
+
+RenderSettings settings_from_scene(const SceneRenderDefaults& d) {
+    RenderSettings s;
+    s.integrator = parse_integrator(d.integrator);
+    s.rr_rule = parse_rr_rule(d.russian_roulette);
+    s.max_depth = d.max_depth;
+    s.seed = d.seed;
+    s.ao_distance = d.ao_distance;
+    return s;
+}
+
+}  // namespace clpath

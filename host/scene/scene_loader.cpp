@@ -1,0 +1,9 @@
+#include "scene/scene_loader.hpp"
+
+#include "scene/builtin_scenes.hpp"
+
+namespace clpath {
+
+Scene load_scene(const std::string& spec) { return builtin_scene(spec); }
+
+}  // namespace clpath
