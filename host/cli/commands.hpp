@@ -11,5 +11,6 @@ using Command = std::function<int()>;
 
 Command add_render_command(CLI::App& app);
 Command add_devices_command(CLI::App& app);
+Command add_compare_command(CLI::App& app);
 
 }  // namespace clpath

@@ -1,4 +1,4 @@
-// clpath: an OpenCL Monte Carlo path tracer. Subcommands: render, devices.
+// clpath: an OpenCL Monte Carlo path tracer. Subcommands: render, devices, compare (and view with the viewer built in).
 #include <cstdio>
 #include <map>
 
@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
     };
     add(clpath::add_render_command);
     add(clpath::add_devices_command);
+    add(clpath::add_compare_command);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
