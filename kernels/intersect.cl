@@ -87,7 +87,21 @@ inline int intersect_triangle(const RayPre* r, float3 v0, float3 v1, float3 v2, 
     }
     if (T <= 0.0f || T >= tmax * det) return 0;
     float inv = 1.0f / det;
-    *t_out = T * inv;
+    float t = T * inv;
+    /* t must be positive beyond its own rounding error, or a ray leaving a
+     * surface just above it can hit the surface's neighbour "behind" its
+     * origin (PBR 4th ed., 6.8.3; one extra gamma(2) for OpenCL's 2.5-ulp
+     * division and the scaling by sz). */
+    float max_z = fmax(fabs(Az), fmax(fabs(Bz), fabs(Cz)));
+    float max_x = fmax(fabs(Ax), fmax(fabs(Bx), fabs(Cx)));
+    float max_y = fmax(fabs(Ay), fmax(fabs(By), fabs(Cy)));
+    float delta_z = CLP_GAMMA(5) * max_z;
+    float delta_x = CLP_GAMMA(7) * (max_x + max_z), delta_y = CLP_GAMMA(7) * (max_y + max_z);
+    float delta_e = 2.0f * (CLP_GAMMA(4) * max_x * max_y + delta_y * max_x + delta_x * max_y);
+    float max_e = fmax(fabs(U), fmax(fabs(V), fabs(W)));
+    float delta_t = 3.0f * (CLP_GAMMA(5) * max_e * max_z + delta_e * max_z + delta_z * max_e) * inv;
+    if (t <= delta_t) return 0;
+    *t_out = t;
     *b1_out = V * inv;
     *b2_out = W * inv;
     return 1;

@@ -1,5 +1,13 @@
 /* Materials: what a surface emits and how it scatters. Each kind has one
- * definition used both to sample a direction and to weight it. */
+ * definition used both to sample a direction (material_sample) and to evaluate
+ * a given one (material_eval), so the two cannot disagree. Kinds a scene does
+ * not use are compiled out (CLP_HAS_MAT_*).
+ *
+ * Directions point away from the surface. BSDFs work in a local frame whose z
+ * axis is the shading normal; `ng` is the geometric normal of the triangle's
+ * winding (its front side). */
+
+/* ---- emission ---------------------------------------------------------- */
 
 /* Radiance emitted towards a ray that hit the surface from the front
  * (front = the side the triangle's winding faces) or the back. */
@@ -8,14 +16,242 @@ inline float3 material_emission(global const Material* m, int front) {
     return load3g(m->emission);
 }
 
-/* Samples an outgoing direction about the shading normal n (facing the
- * incoming side). Returns the throughput weight f cos / pdf. Lambert sampled by
- * cos theta / pi: the weight is the albedo exactly. */
-inline float3 material_sample(global const Material* m, float3 n, float u1, float u2, float3* wi) {
-    *wi = to_world(sample_cosine_hemisphere(u1, u2), n);
-    return load3g(m->albedo);
+inline int material_scatters(global const Material* m) {
+    return m->kind != CLP_MAT_DIFFUSE || m->albedo[0] > 0.0f || m->albedo[1] > 0.0f || m->albedo[2] > 0.0f;
 }
 
-inline int material_scatters(global const Material* m) {
-    return m->albedo[0] > 0.0f || m->albedo[1] > 0.0f || m->albedo[2] > 0.0f;
+/* Roughness below this (alpha = roughness^2 < 1e-3) is treated as a perfectly
+ * smooth surface: the GGX lobe would be narrower than float can represent. */
+#define CLP_SMOOTH_ALPHA 1e-3f
+
+inline float ggx_alpha(global const Material* m) { return m->roughness * m->roughness; }
+
+/* Materials whose scattering is a Dirac delta: no light sampling, no MIS. */
+inline int material_is_delta(global const Material* m) {
+    switch (m->kind) {
+#ifdef CLP_HAS_MAT_MIRROR
+    case CLP_MAT_MIRROR: return 1;
+#endif
+#ifdef CLP_HAS_MAT_CONDUCTOR
+    case CLP_MAT_CONDUCTOR: return ggx_alpha(m) < CLP_SMOOTH_ALPHA;
+#endif
+#ifdef CLP_HAS_MAT_DIELECTRIC
+    case CLP_MAT_DIELECTRIC: return 1;
+#endif
+    default: return 0;
+    }
 }
+
+/* ---- frames and helpers ------------------------------------------------- */
+
+typedef struct {
+    float3 t, b, n;
+} Frame;
+
+inline Frame frame_about(float3 n) {
+    Frame f;
+    f.n = n;
+    make_frame(n, &f.t, &f.b);
+    return f;
+}
+inline float3 to_local(const Frame* f, float3 v) { return (float3)(dot(v, f->t), dot(v, f->b), dot(v, f->n)); }
+inline float3 from_local(const Frame* f, float3 v) { return v.x * f->t + v.y * f->b + v.z * f->n; }
+
+inline float3 schlick_fresnel(float3 f0, float cos_theta) {
+    float m = clamp(1.0f - cos_theta, 0.0f, 1.0f);
+    float m2 = m * m;
+    return f0 + ((float3)(1.0f) - f0) * (m2 * m2 * m);
+}
+
+/* Unpolarised Fresnel reflectance of a dielectric interface. cos_i > 0 on the
+ * side the light comes from; eta = n_transmitted / n_incident. 1 under total
+ * internal reflection. (PBR 4th ed., 9.3.) */
+inline float fresnel_dielectric(float cos_i, float eta) {
+    cos_i = clamp(cos_i, 0.0f, 1.0f);
+    float sin2_t = (1.0f - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= 1.0f) return 1.0f;
+    float cos_t = sqrt(fmax(0.0f, 1.0f - sin2_t));
+    float r_par = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    float r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    return 0.5f * (r_par * r_par + r_perp * r_perp);
+}
+
+/* ---- GGX (Trowbridge-Reitz) microfacets, isotropic ---------------------- */
+/* Walter et al. 2007 for D and Smith's G; the height-correlated masking-
+ * shadowing of Heitz 2014; visible-normal sampling of Heitz 2018. */
+
+inline float ggx_d(float3 h, float alpha) {
+    float a2 = alpha * alpha;
+    float c2 = h.z * h.z;
+    float d = c2 * (a2 - 1.0f) + 1.0f;
+    return a2 / (CLP_PI * d * d);
+}
+
+inline float ggx_lambda(float3 w, float alpha) {
+    float c2 = w.z * w.z;
+    if (c2 <= 0.0f) return INFINITY;
+    float tan2 = fmax(0.0f, 1.0f - c2) / c2;
+    return 0.5f * (sqrt(1.0f + alpha * alpha * tan2) - 1.0f);
+}
+
+inline float ggx_g1(float3 w, float alpha) { return 1.0f / (1.0f + ggx_lambda(w, alpha)); }
+inline float ggx_g2(float3 wo, float3 wi, float alpha) {
+    return 1.0f / (1.0f + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha));
+}
+
+/* Normal visible from wo (wo.z > 0), distributed as D_wo(h) = G1(wo) max(0, wo.h) D(h) / wo.z. */
+inline float3 ggx_sample_visible_normal(float3 wo, float alpha, float u1, float u2) {
+    float3 vh = normalize((float3)(alpha * wo.x, alpha * wo.y, wo.z));
+    float len2 = vh.x * vh.x + vh.y * vh.y;
+    float3 t1 = len2 > 0.0f ? (float3)(-vh.y, vh.x, 0.0f) * rsqrt(len2) : (float3)(1.0f, 0.0f, 0.0f);
+    float3 t2 = cross(vh, t1);
+    float r = sqrt(u1), phi = 2.0f * CLP_PI * u2;
+    float p1 = r * cos(phi), p2 = r * sin(phi);
+    float s = 0.5f * (1.0f + vh.z);
+    p2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - p1 * p1)) + s * p2;
+    float3 nh = p1 * t1 + p2 * t2 + sqrt(fmax(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
+    return normalize((float3)(alpha * nh.x, alpha * nh.y, fmax(1e-6f, nh.z)));
+}
+
+/* pdf of wi = reflect(wo, h) when h is a visible normal. */
+inline float ggx_reflection_pdf(float3 wo, float3 h, float alpha) {
+    float wo_h = dot(wo, h);
+    if (wo.z <= 0.0f || wo_h <= 0.0f) return 0.0f;
+    return ggx_g1(wo, alpha) * ggx_d(h, alpha) / (4.0f * wo.z);
+}
+
+/* ---- the BSDF interface ------------------------------------------------- */
+
+typedef struct {
+    float3 wi;     /* sampled direction (world) */
+    float3 weight; /* f |cos theta_i| / pdf; for deltas the whole throughput factor */
+    float pdf;     /* solid-angle pdf; 0 for a delta lobe */
+    int delta;
+} BsdfSample;
+
+/* The local frame for scattering at a surface seen from wo: reflective kinds
+ * use the shading normal turned to wo's side of the geometric normal; glass
+ * keeps the geometric orientation (front = outside) so entering and leaving
+ * follow from the geometry, never from a flag carried along the path. */
+inline Frame scatter_frame(global const Material* m, float3 ng, float3 ns, float3 wo) {
+#ifdef CLP_HAS_MAT_DIELECTRIC
+    if (m->kind == CLP_MAT_DIELECTRIC) {
+        if (dot(ns, ng) < 0.0f) ns = -ns;
+        return frame_about(ns);
+    }
+#endif
+    float s = dot(wo, ng) >= 0.0f ? 1.0f : -1.0f;
+    ng *= s;
+    ns *= s;
+    if (dot(ns, ng) < 0.0f) ns = ng; /* a shading normal facing away from the viewer is unusable */
+    return frame_about(ns);
+}
+
+/* f(wo, wi) |cos theta_i| and the pdf with which material_sample picks wi.
+ * Delta lobes evaluate to 0. A reflection whose wi falls below the geometric
+ * surface is 0: that light would have come through the triangle. */
+inline float3 material_eval(global const Material* m, float3 ng, float3 ns, float3 wo_w, float3 wi_w, float* pdf) {
+    *pdf = 0.0f;
+    Frame f = scatter_frame(m, ng, ns, wo_w);
+    float3 wo = to_local(&f, wo_w), wi = to_local(&f, wi_w);
+    if (dot(wi_w, ng) * dot(wo_w, ng) <= 0.0f) return (float3)(0.0f); /* reflection only, below this line */
+    if (wo.z <= 0.0f || wi.z <= 0.0f) return (float3)(0.0f);
+    switch (m->kind) {
+#ifdef CLP_HAS_MAT_DIFFUSE
+    case CLP_MAT_DIFFUSE:
+        *pdf = cosine_hemisphere_pdf(wi.z);
+        return load3g(m->albedo) * (wi.z * CLP_INV_PI);
+#endif
+#ifdef CLP_HAS_MAT_CONDUCTOR
+    case CLP_MAT_CONDUCTOR: {
+        float alpha = ggx_alpha(m);
+        if (alpha < CLP_SMOOTH_ALPHA) return (float3)(0.0f);
+        float3 h = normalize(wo + wi);
+        *pdf = ggx_reflection_pdf(wo, h, alpha);
+        float3 F = schlick_fresnel(load3g(m->albedo), dot(wo, h));
+        return F * (ggx_d(h, alpha) * ggx_g2(wo, wi, alpha) / (4.0f * wo.z));
+    }
+#endif
+    default: return (float3)(0.0f);
+    }
+}
+
+/* Samples wi for wo with the numbers u1..u3. Returns 0 when the path ends here. */
+inline int material_sample(global const Material* m, float3 ng, float3 ns, float3 wo_w, float u1, float u2, float u3,
+                           BsdfSample* s) {
+    Frame f = scatter_frame(m, ng, ns, wo_w);
+    float3 wo = to_local(&f, wo_w);
+    s->delta = 0;
+    s->pdf = 0.0f;
+    switch (m->kind) {
+#ifdef CLP_HAS_MAT_DIFFUSE
+    case CLP_MAT_DIFFUSE: {
+        /* Lambert sampled by cos theta / pi: the weight is the albedo exactly. */
+        float3 wi = sample_cosine_hemisphere(u1, u2);
+        s->wi = from_local(&f, wi);
+        s->pdf = cosine_hemisphere_pdf(wi.z);
+        s->weight = load3g(m->albedo);
+        break;
+    }
+#endif
+#ifdef CLP_HAS_MAT_MIRROR
+    case CLP_MAT_MIRROR:
+        s->wi = from_local(&f, (float3)(-wo.x, -wo.y, wo.z));
+        s->weight = load3g(m->albedo);
+        s->delta = 1;
+        break;
+#endif
+#ifdef CLP_HAS_MAT_CONDUCTOR
+    case CLP_MAT_CONDUCTOR: {
+        float alpha = ggx_alpha(m);
+        if (wo.z <= 0.0f) return 0;
+        if (alpha < CLP_SMOOTH_ALPHA) {
+            s->wi = from_local(&f, (float3)(-wo.x, -wo.y, wo.z));
+            s->weight = schlick_fresnel(load3g(m->albedo), wo.z);
+            s->delta = 1;
+            break;
+        }
+        float3 h = ggx_sample_visible_normal(wo, alpha, u1, u2);
+        float3 wi = 2.0f * dot(wo, h) * h - wo;
+        if (wi.z <= 0.0f) return 0;
+        s->wi = from_local(&f, wi);
+        s->pdf = ggx_reflection_pdf(wo, h, alpha);
+        /* f cos / pdf = F G2 / G1(wo) for visible-normal sampling. */
+        s->weight = schlick_fresnel(load3g(m->albedo), dot(wo, h)) * (ggx_g2(wo, wi, alpha) / ggx_g1(wo, alpha));
+        break;
+    }
+#endif
+#ifdef CLP_HAS_MAT_DIELECTRIC
+    case CLP_MAT_DIELECTRIC: {
+        /* Smooth glass. wo.z > 0: wo is outside (the front of the winding). */
+        int outside = wo.z > 0.0f;
+        float eta = outside ? m->ior : 1.0f / m->ior; /* n_transmitted / n_incident for light along -wi */
+        float cos_o = fabs(wo.z);
+        float F = fresnel_dielectric(cos_o, eta);
+        s->delta = 1;
+        if (u3 < F) {
+            s->wi = from_local(&f, (float3)(-wo.x, -wo.y, wo.z));
+            s->weight = (float3)(1.0f);
+        } else {
+            float sin2_t = (1.0f - cos_o * cos_o) / (eta * eta);
+            float cos_t = sqrt(fmax(0.0f, 1.0f - sin2_t));
+            float3 wi = (float3)(-wo.x / eta, -wo.y / eta, outside ? -cos_t : cos_t);
+            s->wi = from_local(&f, normalize(wi));
+            /* Radiance is compressed into the denser medium: scale by 1/eta^2
+             * (PBR 4th ed., 9.5.2). The tint colours transmitted light only. */
+            s->weight = load3g(m->albedo) / (eta * eta);
+        }
+        /* The sampled side must agree with the geometry, or the path would
+         * slip through the triangle. */
+        if (dot(s->wi, ng) * dot(wo_w, ng) > 0.0f ? u3 >= F : u3 < F) return 0;
+        return 1;
+    }
+#endif
+    default: return 0;
+    }
+    /* A reflection that points below the geometric surface ends the path. */
+    return dot(s->wi, ng) * dot(wo_w, ng) > 0.0f;
+}
+
+/* What the albedo debug view shows. */
+inline float3 material_albedo(global const Material* m) { return load3g(m->albedo); }

@@ -43,6 +43,18 @@ typedef std::uint32_t uint;
 #define CLP_INTEGRATOR_HEATMAP 6u   /* BVH nodes visited by the camera ray, false colour */
 #define CLP_INTEGRATOR_COUNT 7u
 
+/* Light kinds in the light table (one table, one alias table over it). */
+#define CLP_LIGHT_TRIANGLE 0u    /* an emissive triangle: a, b, c its vertices, L its radiance */
+#define CLP_LIGHT_POINT 1u       /* a: position, L: intensity (W/sr) */
+#define CLP_LIGHT_SPOT 2u        /* a: position, b: axis, L: intensity, smooth falloff cos_outer..cos_inner */
+#define CLP_LIGHT_DIRECTIONAL 3u /* b: direction the light travels, L: irradiance (W/m^2) */
+#define CLP_LIGHT_ENVIRONMENT 4u /* FrameParams.env_*: a constant colour or an equirectangular image */
+#define CLP_LIGHTF_TWO_SIDED 1u  /* a triangle light that emits from both faces */
+#define CLP_NO_LIGHT 0xffffffffu
+
+/* FrameParams.scene_flags. */
+#define CLP_SCENE_NORMALS 1u /* the normals buffer holds per-vertex shading normals */
+
 /* Material flags. */
 #define CLP_MATF_TWO_SIDED_EMISSION 1u /* emits from the back face too */
 
@@ -70,12 +82,13 @@ typedef struct {
 } BvhNode;
 
 /* Triangle as traversal reads it, in BVH leaf order. prim is the index of the
- * triangle in the scene's original order (for material and shading data). */
+ * triangle in the scene's original order (for material and shading data);
+ * light lets a path that hits an emitter find its light-sampling pdf (MIS). */
 typedef struct {
     float v0[3];
     uint prim;
     float v1[3];
-    uint pad1;
+    uint light; /* index in the light table when the triangle emits, else CLP_NO_LIGHT */
     float v2[3];
     uint pad2;
 } TriVerts;
@@ -91,6 +104,28 @@ typedef struct {
     uint pad0;
     uint pad1;
 } Material;
+
+/* One light of the light table (see CLP_LIGHT_*). */
+typedef struct {
+    float a[3];
+    uint type;
+    float b[3];
+    uint flags;
+    float c[3];
+    float cos_outer;
+    float L[3];
+    float cos_inner;
+} Light;
+
+/* Walker's alias table over the lights (Vose's construction on the host):
+ * pick i uniformly, keep it with probability prob, else take alias. pmf is the
+ * light's own selection probability, for MIS weights. */
+typedef struct {
+    float prob;
+    uint alias;
+    float pmf;
+    uint pad;
+} AliasEntry;
 
 /* Pinhole camera, already turned into a ray basis by the host:
  * direction(x_ndc, y_ndc) = forward + x_ndc * right + y_ndc * up,
@@ -117,6 +152,18 @@ typedef struct {
     uint rr_min_depth;     /* bounces before throughput roulette starts */
     uint pixel_offset;     /* first pixel of this launch (launches may cover a band) */
     uint pixel_count;
+    uint light_count;      /* entries in the light table */
+    uint env_light;        /* the environment's index in the light table, or CLP_NO_LIGHT */
+    float ao_distance;     /* ambient occlusion ray length */
+    float depth_scale;     /* depth view: distance that maps to 1 */
+    float env_color[3];    /* constant environment radiance (no image) */
+    uint env_width;        /* equirectangular image size; 0 without an image */
+    float env_scale;       /* multiplies the image */
+    float env_rot_cos;     /* rotation of the environment about +y */
+    float env_rot_sin;
+    uint env_height;
+    uint scene_flags;      /* CLP_SCENE_*: what the scene really has, for kernels compiled with every feature */
+    uint pad0, pad1, pad2;
 } FrameParams;
 
 /* Counters the kernels bump with atomics; the host reads and clears them per launch. */
@@ -140,7 +187,9 @@ CLP_STATIC_ASSERT(sizeof(BvhNode) == 64, bvh_node_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(TriVerts) == 48, tri_verts_is_48_bytes);
 CLP_STATIC_ASSERT(sizeof(Material) == 48, material_is_48_bytes);
 CLP_STATIC_ASSERT(sizeof(CameraData) == 64, camera_is_64_bytes);
-CLP_STATIC_ASSERT(sizeof(FrameParams) == 96, frame_params_is_96_bytes);
+CLP_STATIC_ASSERT(sizeof(FrameParams) == 160, frame_params_is_160_bytes);
+CLP_STATIC_ASSERT(sizeof(Light) == 64, light_is_64_bytes);
+CLP_STATIC_ASSERT(sizeof(AliasEntry) == 16, alias_entry_is_16_bytes);
 CLP_STATIC_ASSERT(sizeof(Counters) == 16, counters_is_16_bytes);
 CLP_STATIC_ASSERT(sizeof(AccumPixel) == 32, accum_pixel_is_32_bytes);
 

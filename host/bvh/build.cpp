@@ -310,7 +310,8 @@ Bvh build_bvh(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& opt
             t.v2[a] = vertices[3 * s + 2][a];
         }
         t.prim = std::uint32_t(s);
-        t.pad1 = t.pad2 = 0;
+        t.light = CLP_NO_LIGHT;  // the renderer marks emitters
+        t.pad2 = 0;
     }
     bvh.stats.node_count = bvh.nodes.size();
     bvh.stats.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -30,7 +30,7 @@ std::string program_source(const std::vector<std::string>& files) {
 const std::vector<std::string>& renderer_kernel_files() {
     static const std::vector<std::string> files = {
         "rng.cl", "sampling.cl", "camera.cl", "intersect.cl", "traverse.cl",
-        "materials.cl", "film.cl", "integrator.cl"};
+        "materials.cl", "lights.cl", "film.cl", "integrator.cl"};
     return files;
 }
 

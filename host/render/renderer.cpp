@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "cl/embedded_sources.hpp"
+#include "render/environment_map.hpp"
+#include "render/light_table.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -13,6 +15,12 @@ namespace {
 constexpr std::uint32_t kTile = 8;        // kernels/integrator.cl CLP_TILE
 constexpr std::size_t kWorkGroup = 64;
 
+void validate_settings(const RenderSettings& s) {
+    if (s.integrator >= CLP_INTEGRATOR_COUNT) throw Error("internal: unknown integrator");
+    if (s.rr_rule == CLP_RR_DEPTH && s.max_depth < 1)
+        throw Error("the depth Russian roulette rule needs a maximum depth of at least 1");
+}
+
 void validate_scene(const Scene& s) {
     if (s.triangle_count() == 0) throw Error("scene '" + s.name + "' has no triangles");
     if (s.vertices.size() != s.triangle_count() * 3)
@@ -20,30 +28,72 @@ void validate_scene(const Scene& s) {
                     " vertices for " + std::to_string(s.triangle_count()) + " triangles");
     for (auto m : s.triangle_material)
         if (m >= s.materials.size()) throw Error("internal: triangle material index out of range");
+    if (!s.normals.empty() && s.normals.size() != s.vertices.size())
+        throw Error("internal: scene '" + s.name + "' has normals for some vertices only");
+    for (std::size_t i = 0; i < s.materials.size(); ++i) {
+        const Material& m = s.materials[i];
+        const std::string name = i < s.material_names.size() ? s.material_names[i] : std::to_string(i);
+        if (m.kind >= CLP_MAT_KIND_COUNT) throw Error("material '" + name + "': unknown kind");
+        if (m.kind == CLP_MAT_DIELECTRIC && m.roughness > 0)
+            throw Error("material '" + name + "': rough dielectrics are not supported (roughness must be 0)");
+        if (m.kind == CLP_MAT_DIELECTRIC && !(m.ior > 0))
+            throw Error("material '" + name + "': index of refraction must be positive");
+    }
 }
 
 }  // namespace
 
-std::string renderer_build_options(const Scene&) {
-    // Scene-specific feature switches join these when more material and light kinds exist.
-    return "-cl-std=CL1.2";
-}
-
 Renderer::Renderer(Context& ctx, const Scene& scene, const RenderSettings& settings)
     : ctx_(ctx), settings_(settings), camera_(scene.camera) {
     validate_scene(scene);
+    validate_settings(settings);
     triangle_count_ = scene.triangle_count();
-    const CameraData cam = camera_data(camera_);  // validates the camera before any work
+    camera_data(camera_);  // validates the camera before any work
+    scene_features_ = scene_features(scene);
+    features_ = kernel_features(scene_features_, settings_);
+
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const auto& v : scene.vertices) {
+        lo = glm::min(lo, v);
+        hi = glm::max(hi, v);
+    }
+    scene_diagonal_ = glm::length(hi - lo);
+    if (!(scene_diagonal_ > 0) || !std::isfinite(scene_diagonal_)) scene_diagonal_ = 1;
+
+    // The environment and the light table are built for next-event estimation
+    // whatever the current integrator, so switching integrators rebuilds nothing.
+    const EnvironmentMap env = load_environment_map(scene.environment);
+    env_width_ = env.width;
+    env_height_ = env.height;
+    env_color_ = scene.environment.color;
+    env_scale_ = scene.environment.scale;
+    env_rotation_ = glm::radians(scene.environment.rotation_degrees);
+    RenderSettings path_settings = settings_;
+    path_settings.integrator = CLP_INTEGRATOR_PATH;
+    path_settings.all_features = false;
+    const LightTable lights =
+        build_light_table(scene, kernel_features(scene_features_, path_settings), env, 0.5f * scene_diagonal_);
+    light_count_ = lights.lights.size();
+    env_light_ = lights.environment;
 
     Bvh bvh = build_bvh(scene.vertices, settings.bvh);
     bvh_stats_ = bvh.stats;
+    for (auto& t : bvh.triangles) t.light = lights.light_of_triangle[t.prim];
     bvh_nodes_ = bvh.nodes;
 
+    // Kernels take no empty buffers: a missing part gets one zero record.
     const std::size_t pixels = std::size_t(camera_.width) * camera_.height;
+    const std::size_t normal_bytes = std::max<std::size_t>(16, scene.normals.size() * 12);
+    const std::size_t light_bytes = std::max<std::size_t>(1, light_count_) * sizeof(Light);
+    const std::size_t alias_bytes = std::max<std::size_t>(1, light_count_) * sizeof(AliasEntry);
     ctx.check_fits({{"BVH nodes", bvh.nodes.size() * sizeof(BvhNode)},
                     {"triangles", bvh.triangles.size() * sizeof(TriVerts)},
                     {"triangle materials", scene.triangle_material.size() * sizeof(std::uint32_t)},
                     {"materials", scene.materials.size() * sizeof(Material)},
+                    {"shading normals", normal_bytes},
+                    {"lights", light_bytes + alias_bytes},
+                    {"environment image", env.pixels.size() * sizeof(float)},
+                    {"environment distribution", env.cdf.size() * sizeof(float)},
                     {"accumulation film", pixels * sizeof(AccumPixel)},
                     {"linear image", pixels * 16},
                     {"sRGB image", pixels * 4}});
@@ -54,21 +104,40 @@ Renderer::Renderer(Context& ctx, const Scene& scene, const RenderSettings& setti
                                "triangle materials", scene.triangle_material.data());
     materials_ = ctx.buffer(scene.materials.size() * sizeof(Material), CL_MEM_READ_ONLY, "materials",
                             scene.materials.data());
+    std::vector<float> zeros(16, 0.0f);
+    normals_ = ctx.buffer(normal_bytes, CL_MEM_READ_ONLY, "shading normals",
+                          scene.normals.empty() ? static_cast<const void*>(zeros.data()) : scene.normals.data());
+    const Light no_light{};
+    const AliasEntry no_alias{};
+    lights_ = ctx.buffer(light_bytes, CL_MEM_READ_ONLY, "lights",
+                         light_count_ ? static_cast<const void*>(lights.lights.data()) : &no_light);
+    alias_ = ctx.buffer(alias_bytes, CL_MEM_READ_ONLY, "light alias table",
+                        light_count_ ? static_cast<const void*>(lights.alias.data()) : &no_alias);
+    env_pixels_ = ctx.buffer(env.pixels.size() * sizeof(float), CL_MEM_READ_ONLY, "environment image",
+                             env.pixels.data());
+    env_cdf_ = ctx.buffer(env.cdf.size() * sizeof(float), CL_MEM_READ_ONLY, "environment distribution",
+                          env.cdf.data());
     params_ = ctx.buffer(sizeof(FrameParams), CL_MEM_READ_ONLY, "frame parameters");
     counters_ = ctx.buffer(sizeof(Counters), CL_MEM_READ_WRITE, "counters");
     accum_ = ctx.buffer(pixels * sizeof(AccumPixel), CL_MEM_READ_WRITE, "accumulation film");
     linear_ = ctx.buffer(pixels * 16, CL_MEM_WRITE_ONLY, "linear image");
     srgb_ = ctx.buffer(pixels * 4, CL_MEM_WRITE_ONLY, "sRGB image");
-    (void)cam;
 
-    BuildResult built = build_program(ctx, program_source(renderer_kernel_files()), renderer_build_options(scene));
+    compile();
+    reset();
+}
+
+void Renderer::compile() {
+    BuildResult built = build_program(ctx_, program_source(renderer_kernel_files()), build_options(features_));
+    render_ = Kernel();
+    clear_ = Kernel();
+    resolve_ = Kernel();
     program_ = std::move(built.program);
     compile_seconds_ = built.seconds;
     from_cache_ = built.from_cache;
-    render_ = ctx.kernel(program_.get(), "render_paths");
-    clear_ = ctx.kernel(program_.get(), "film_clear");
-    resolve_ = ctx.kernel(program_.get(), "film_resolve");
-    reset();
+    render_ = ctx_.kernel(program_.get(), "render_paths");
+    clear_ = ctx_.kernel(program_.get(), "film_clear");
+    resolve_ = ctx_.kernel(program_.get(), "film_resolve");
 }
 
 std::size_t Renderer::device_bytes() const { return ctx_.allocated_bytes(); }
@@ -95,7 +164,17 @@ void Renderer::set_camera(const Camera& camera) {
     reset();
 }
 
-void Renderer::set_settings(const RenderSettings& settings) { settings_ = settings; }
+void Renderer::set_settings(const RenderSettings& settings) {
+    validate_settings(settings);
+    settings_ = settings;
+    const KernelFeatures f = kernel_features(scene_features_, settings_);
+    if (!(f == features_)) {
+        features_ = f;
+        compile();
+    }
+    seconds_per_pixel_sample_ = 0;  // another integrator runs at another speed
+    reset();
+}
 
 void Renderer::launch_band(std::uint32_t first_pixel, std::uint32_t pixel_count, std::uint32_t samples) {
     FrameParams fp{};
@@ -108,11 +187,24 @@ void Renderer::launch_band(std::uint32_t first_pixel, std::uint32_t pixel_count,
     fp.rr_min_depth = settings_.rr_min_depth;
     fp.pixel_offset = first_pixel;
     fp.pixel_count = pixel_count;
+    fp.light_count = settings_.integrator == CLP_INTEGRATOR_PATH ? std::uint32_t(light_count_) : 0u;
+    fp.env_light = env_light_;
+    fp.ao_distance = settings_.ao_distance > 0 ? settings_.ao_distance : 0.1f * scene_diagonal_;
+    fp.depth_scale = scene_diagonal_;
+    fp.env_color[0] = env_color_.x;
+    fp.env_color[1] = env_color_.y;
+    fp.env_color[2] = env_color_.z;
+    fp.env_width = std::uint32_t(env_width_);
+    fp.env_height = std::uint32_t(env_height_);
+    fp.env_scale = env_scale_;
+    fp.env_rot_cos = std::cos(env_rotation_);
+    fp.env_rot_sin = std::sin(env_rotation_);
+    fp.scene_flags = scene_features_.normals ? CLP_SCENE_NORMALS : 0u;
     const Counters zero{};
     ctx_.write(params_, &fp, sizeof fp);
     ctx_.write(counters_, &zero, sizeof zero);
-    render_.arg(0, nodes_).arg(1, tris_).arg(2, tri_material_).arg(3, materials_).arg(4, params_).arg(5, accum_).arg(
-        6, counters_);
+    render_.arg(0, nodes_).arg(1, tris_).arg(2, tri_material_).arg(3, materials_).arg(4, normals_).arg(5, lights_);
+    render_.arg(6, alias_).arg(7, env_pixels_).arg(8, env_cdf_).arg(9, params_).arg(10, accum_).arg(11, counters_);
     const auto t0 = std::chrono::steady_clock::now();
     ctx_.launch(render_, pixel_count, kWorkGroup);
     Counters c{};

@@ -8,6 +8,7 @@
 #include "cl/context.hpp"
 #include "cl/program.hpp"
 #include "image/image.hpp"
+#include "render/kernel_features.hpp"
 #include "render/settings.hpp"
 #include "scene/scene.hpp"
 
@@ -37,7 +38,11 @@ public:
     // Starts the mean again (the viewer's camera moved), keeping the scene.
     void reset();
     void set_camera(const Camera& camera);
-    void set_settings(const RenderSettings& settings);  // takes effect after reset
+    // New settings restart the mean; the kernels are rebuilt (or loaded from
+    // the cache) when the features they need change, e.g. another integrator.
+    void set_settings(const RenderSettings& settings);
+    const RenderSettings& settings() const { return settings_; }
+    const KernelFeatures& features() const { return features_; }
 
     // The mean, scaled by exposure, as linear float and 8-bit sRGB, read back.
     RenderedImage resolve(float exposure = 1.0f);
@@ -52,6 +57,7 @@ public:
     const RenderStats& stats() const { return stats_; }
     const BvhStats& bvh_stats() const { return bvh_stats_; }
     std::size_t triangle_count() const { return triangle_count_; }
+    std::size_t light_count() const { return light_count_; }
     double compile_seconds() const { return compile_seconds_; }
     bool compiled_from_cache() const { return from_cache_; }
     const Camera& camera() const { return camera_; }
@@ -59,6 +65,7 @@ public:
 
 private:
     void launch_band(std::uint32_t first_pixel, std::uint32_t pixel_count, std::uint32_t samples);
+    void compile();
     std::uint32_t tiled_pixel_count() const;
 
     Context& ctx_;
@@ -66,8 +73,16 @@ private:
     Camera camera_;
     BvhStats bvh_stats_;
     std::vector<BvhNode> bvh_nodes_;
-    std::size_t triangle_count_ = 0;
-    Buffer nodes_, tris_, tri_material_, materials_, params_, accum_, counters_, linear_, srgb_;
+    std::size_t triangle_count_ = 0, light_count_ = 0;
+    SceneFeatures scene_features_;
+    KernelFeatures features_;
+    std::uint32_t env_light_ = CLP_NO_LIGHT;
+    int env_width_ = 0, env_height_ = 0;
+    glm::vec3 env_color_{0};
+    float env_scale_ = 1, env_rotation_ = 0;
+    float scene_diagonal_ = 1;
+    Buffer nodes_, tris_, tri_material_, materials_, normals_, lights_, alias_, env_pixels_, env_cdf_;
+    Buffer params_, accum_, counters_, linear_, srgb_;
     Program program_;
     Kernel render_, clear_, resolve_;
     RenderStats stats_;
@@ -75,8 +90,5 @@ private:
     bool from_cache_ = false;
     double seconds_per_pixel_sample_ = 0;  // measured; sizes the launches
 };
-
-// Compiler options for the renderer's kernels.
-std::string renderer_build_options(const Scene& scene);
 
 }  // namespace clpath

@@ -9,6 +9,8 @@ kernel void probe_struct_sizes(global uint* out) {
     out[4] = sizeof(FrameParams);
     out[5] = sizeof(Counters);
     out[6] = sizeof(AccumPixel);
+    out[7] = sizeof(Light);
+    out[8] = sizeof(AliasEntry);
 }
 
 /* out[i * n + j]: the j-th number of stream (pixel = i, sample = sample). */
@@ -95,4 +97,31 @@ kernel void probe_brute(global const TriVerts* tris, uint tri_count, global cons
     intersect_leaf(&r, tris, 0, tri_count, &h);
     out_t[i] = h.t;
     out_prim[i] = h.tri >= 0 ? (int)tris[h.tri].prim : -1;
+}
+
+/* Samples material m for the fixed direction wo in a frame where the geometric
+ * and shading normals are both +z. wi_pdf: (wi, pdf), pdf -1 when the sample
+ * ended the path; weight: (f cos / pdf, delta). */
+kernel void probe_bsdf_sample(global const Material* m, float wox, float woy, float woz, uint count, uint seed,
+                              global float4* wi_pdf, global float4* weight) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    Rng r = rng_seed(i, 0, seed);
+    float3 n = (float3)(0.0f, 0.0f, 1.0f);
+    float u1 = rng_next(&r), u2 = rng_next(&r), u3 = rng_next(&r);
+    BsdfSample s;
+    int ok = material_sample(m, n, n, (float3)(wox, woy, woz), u1, u2, u3, &s);
+    wi_pdf[i] = ok ? (float4)(s.wi, s.pdf) : (float4)(0.0f, 0.0f, 0.0f, -1.0f);
+    weight[i] = ok ? (float4)(s.weight, (float)s.delta) : (float4)(0.0f);
+}
+
+/* out[i] = (f(wo_i, wi_i) |cos theta_i|, pdf) with normals +z. */
+kernel void probe_bsdf_eval(global const Material* m, uint count, global const float4* wo, global const float4* wi,
+                            global float4* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    float3 n = (float3)(0.0f, 0.0f, 1.0f);
+    float pdf;
+    float3 f = material_eval(m, n, n, wo[i].xyz, wi[i].xyz, &pdf);
+    out[i] = (float4)(f, pdf);
 }

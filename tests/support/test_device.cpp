@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cl/embedded_sources.hpp"
+#include "render/kernel_features.hpp"
 
 namespace clpath::test {
 
@@ -20,7 +21,12 @@ cl_program probe_program() {
     static Program program = [] {
         auto files = renderer_kernel_files();
         files.push_back("probes.cl");
-        return std::move(build_program(device(), program_source(files), "-cl-std=CL1.2").program);
+        // Every feature compiled in, so probes reach every material and light kind.
+        RenderSettings all;
+        all.all_features = true;
+        return std::move(
+            build_program(device(), program_source(files), build_options(kernel_features(SceneFeatures{}, all)))
+                .program);
     }();
     return program.get();
 }

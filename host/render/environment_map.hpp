@@ -1,0 +1,24 @@
+#pragma once
+// The environment as the kernels read it: an equirectangular image (or none,
+// for a constant colour) and the 2D piecewise-constant distribution that
+// importance-samples it (PBR 4th ed., A.5.6), in the layout of kernels/lights.cl.
+#include <vector>
+
+#include "scene/scene.hpp"
+
+namespace clpath {
+
+struct EnvironmentMap {
+    int width = 0, height = 0;     // 0 x 0 without an image
+    std::vector<float> pixels;     // RGBA float, row 0 = straight up; one dummy texel without an image
+    // Marginal CDF over rows (height + 1), then each row's conditional CDF
+    // (width + 1 each), of luminance x sin(theta). {-1}: sample uniformly instead.
+    std::vector<float> cdf;
+    double average_radiance = 0;   // mean luminance over the sphere (solid-angle weighted)
+};
+
+// Reads the image (through OpenImageIO) and builds the distribution; throws
+// clpath::Error naming the file when it cannot be read or is not finite and >= 0.
+EnvironmentMap load_environment_map(const Environment& environment);
+
+}  // namespace clpath

@@ -1,0 +1,79 @@
+#include "render/kernel_features.hpp"
+
+namespace clpath {
+namespace {
+bool emits(const Material& m) { return m.emission[0] > 0 || m.emission[1] > 0 || m.emission[2] > 0; }
+const char* const kMaterialNames[CLP_MAT_KIND_COUNT] = {"DIFFUSE", "MIRROR", "CONDUCTOR", "DIELECTRIC"};
+}  // namespace
+
+SceneFeatures scene_features(const Scene& scene) {
+    SceneFeatures f;
+    std::vector<bool> used(scene.materials.size(), false);
+    for (auto m : scene.triangle_material) used[m] = true;
+    for (std::size_t i = 0; i < used.size(); ++i) {
+        if (!used[i]) continue;
+        const Material& m = scene.materials[i];
+        f.materials[m.kind] = true;
+        f.emission = f.emission || emits(m);
+    }
+    f.lights = !scene.lights.empty();
+    f.environment = scene.environment.emits();
+    f.environment_map = f.environment && !scene.environment.image.empty();
+    f.normals = !scene.normals.empty();
+    return f;
+}
+
+KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings& settings) {
+    KernelFeatures f;
+    f.integrator = settings.integrator;
+    f.max_depth = settings.max_depth;
+    const bool path = settings.integrator == CLP_INTEGRATOR_PATH;
+    const bool light_transport = path || settings.integrator == CLP_INTEGRATOR_PATH_BSDF;
+    if (settings.all_features) {
+        f.materials.fill(true);
+        f.emission = f.environment = f.environment_map = f.normals = true;
+        f.triangle_lights = f.delta_lights = path;
+        return f;
+    }
+    f.materials = scene.materials;
+    f.emission = scene.emission;
+    f.triangle_lights = path && scene.emission;
+    f.delta_lights = path && scene.lights;
+    f.environment = light_transport && scene.environment;
+    f.environment_map = f.environment && scene.environment_map;
+    f.normals = scene.normals;
+    return f;
+}
+
+std::string build_options(const KernelFeatures& f) {
+    std::string o = "-cl-std=CL1.2";
+    for (std::uint32_t k = 0; k < CLP_MAT_KIND_COUNT; ++k)
+        if (f.materials[k]) o += std::string(" -DCLP_HAS_MAT_") + kMaterialNames[k];
+    if (f.emission) o += " -DCLP_HAS_EMISSION";
+    if (f.triangle_lights) o += " -DCLP_HAS_TRIANGLE_LIGHTS";
+    if (f.delta_lights) o += " -DCLP_HAS_DELTA_LIGHTS";
+    if (f.environment) o += " -DCLP_HAS_ENV";
+    if (f.environment_map) o += " -DCLP_HAS_ENV_MAP";
+    if (f.normals) o += " -DCLP_HAS_NORMALS";
+    o += " -DCLP_INTEGRATOR=" + std::to_string(f.integrator) + "u";
+    o += " -DCLP_MAX_DEPTH=" + std::to_string(f.max_depth) + "u";
+    return o;
+}
+
+std::string describe(const KernelFeatures& f) {
+    std::string s;
+    auto add = [&](bool on, std::string name) {
+        if (on) s += (s.empty() ? "" : " ") + name;
+    };
+    const char* const names[CLP_MAT_KIND_COUNT] = {"diffuse", "mirror", "conductor", "dielectric"};
+    for (std::uint32_t k = 0; k < CLP_MAT_KIND_COUNT; ++k) add(f.materials[k], names[k]);
+    add(f.emission, "emission");
+    add(f.triangle_lights, "triangle-lights");
+    add(f.delta_lights, "delta-lights");
+    add(f.environment, "environment");
+    add(f.environment_map, "environment-map");
+    add(f.normals, "normals");
+    return s;
+}
+
+}  // namespace clpath

@@ -1,0 +1,49 @@
+#pragma once
+// Which parts of the kernels a render needs. The OpenCL program is compiled
+// with exactly these (as CLP_HAS_* definitions, the integrator and the maximum
+// depth), so a Cornell box of diffuse walls and one area light carries no
+// glass, environment or delta-light code. One cached binary per feature set.
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "render/settings.hpp"
+#include "scene/scene.hpp"
+
+namespace clpath {
+
+struct KernelFeatures {
+    std::array<bool, CLP_MAT_KIND_COUNT> materials{};  // indexed by CLP_MAT_*
+    bool emission = false;         // some surface emits
+    bool triangle_lights = false;  // emissive triangles are light-sampled (path integrator)
+    bool delta_lights = false;     // point, spot, directional lights
+    bool environment = false;      // rays that leave the scene see an environment
+    bool environment_map = false;  // ... given by an image
+    bool normals = false;          // interpolated shading normals
+    std::uint32_t integrator = CLP_INTEGRATOR_PATH;
+    std::uint32_t max_depth = 16;
+
+    bool operator==(const KernelFeatures&) const = default;
+};
+
+// What a scene holds, independent of how it is rendered.
+struct SceneFeatures {
+    std::array<bool, CLP_MAT_KIND_COUNT> materials{};  // kinds some triangle uses
+    bool emission = false, lights = false, environment = false, environment_map = false, normals = false;
+};
+SceneFeatures scene_features(const Scene& scene);
+
+// What this scene, rendered with these settings, uses. With settings.all_features
+// every feature is on, whatever the scene holds.
+KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings& settings);
+inline KernelFeatures kernel_features(const Scene& scene, const RenderSettings& settings) {
+    return kernel_features(scene_features(scene), settings);
+}
+
+// "-cl-std=CL1.2 -DCLP_HAS_MAT_DIFFUSE -DCLP_HAS_EMISSION ... -DCLP_INTEGRATOR=0u -DCLP_MAX_DEPTH=16u"
+std::string build_options(const KernelFeatures& features);
+
+// "diffuse emission triangle-lights" (for logs and benchmark tables).
+std::string describe(const KernelFeatures& features);
+
+}  // namespace clpath

@@ -1,0 +1,207 @@
+/* Lights for next-event estimation: one table of every light (emissive
+ * triangles, point, spot and directional lights, the environment), picked in
+ * proportion to power through an alias table built on the host. Kinds a scene
+ * does not have are compiled out (CLP_HAS_TRIANGLE_LIGHTS, CLP_HAS_DELTA_LIGHTS,
+ * CLP_HAS_ENV, CLP_HAS_ENV_MAP). */
+
+/* ---- the environment ---------------------------------------------------- */
+/* Equirectangular: u = 0.5 + atan2(x, -z) / 2pi across, v = acos(y) / pi down
+ * (row 0 is straight up, the image centre looks along -z), after the
+ * environment's rotation about +y. Texels are looked up without filtering, so
+ * the sampling pdf is exactly proportional to what is returned. */
+
+typedef struct {
+    global const float4* pixels;
+    /* marginal CDF over rows (height + 1 values), then per row the conditional
+     * CDF over columns (width + 1 values each), from luminance x sin(theta). */
+    global const float* cdf;
+} EnvMap;
+
+inline float3 env_rotate(constant const FrameParams* fp, float3 d, float sign) {
+    float c = fp->env_rot_cos, s = fp->env_rot_sin * sign;
+    return (float3)(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
+}
+
+#ifdef CLP_HAS_ENV_MAP
+inline uint env_texel(constant const FrameParams* fp, float3 d, float* sin_theta) {
+    d = env_rotate(fp, d, 1.0f);
+    float u = 0.5f + atan2(d.x, -d.z) * (0.5f * CLP_INV_PI);
+    float v = acos(clamp(d.y, -1.0f, 1.0f)) * CLP_INV_PI;
+    uint x = min((uint)(u * (float)fp->env_width), fp->env_width - 1);
+    uint y = min((uint)(v * (float)fp->env_height), fp->env_height - 1);
+    *sin_theta = sqrt(fmax(0.0f, 1.0f - d.y * d.y));
+    return y * fp->env_width + x;
+}
+#endif
+
+/* Radiance arriving along -d from infinitely far. */
+inline float3 env_radiance(constant const FrameParams* fp, const EnvMap* env, float3 d) {
+#ifdef CLP_HAS_ENV_MAP
+    if (fp->env_width) {
+        float st;
+        return env->pixels[env_texel(fp, d, &st)].xyz * fp->env_scale;
+    }
+#endif
+    return load3c(fp->env_color);
+}
+
+/* Index i with cdf[i] <= u < cdf[i+1] among n intervals (cdf[0] = 0, cdf[n] = 1). */
+inline uint cdf_find(global const float* cdf, uint n, float u) {
+    uint lo = 0, hi = n;
+    while (hi - lo > 1) {
+        uint mid = (lo + hi) / 2;
+        if (cdf[mid] <= u) lo = mid; else hi = mid;
+    }
+    return lo;
+}
+
+/* Solid-angle pdf of env_sample_direction choosing d. */
+inline float env_pdf(constant const FrameParams* fp, const EnvMap* env, float3 d) {
+#ifdef CLP_HAS_ENV_MAP
+    if (fp->env_width && env->cdf[0] >= 0.0f) {
+        uint w = fp->env_width, h = fp->env_height;
+        float st;
+        uint i = env_texel(fp, d, &st), x = i % w, y = i / w;
+        if (st <= 0.0f) return 0.0f;
+        global const float* row = env->cdf + (h + 1) + y * (w + 1);
+        float p_uv = (env->cdf[y + 1] - env->cdf[y]) * (row[x + 1] - row[x]) * (float)w * (float)h;
+        return p_uv / (2.0f * CLP_PI * CLP_PI * st);
+    }
+#endif
+    return 0.25f * CLP_INV_PI;
+}
+
+/* A direction towards the environment: by the image's luminance (pbrt's
+ * piecewise-constant 2D distribution) or, for a constant colour or when not
+ * importance sampled (an empty cdf: cdf[0] < 0), uniformly on the sphere. */
+inline float3 env_sample_direction(constant const FrameParams* fp, const EnvMap* env, float u1, float u2) {
+#ifdef CLP_HAS_ENV_MAP
+    if (fp->env_width && env->cdf[0] >= 0.0f) {
+        uint w = fp->env_width, h = fp->env_height;
+        uint y = cdf_find(env->cdf, h, u1);
+        float dv = (u1 - env->cdf[y]) / fmax(env->cdf[y + 1] - env->cdf[y], 1e-30f);
+        global const float* row = env->cdf + (h + 1) + y * (w + 1);
+        uint x = cdf_find(row, w, u2);
+        float du = (u2 - row[x]) / fmax(row[x + 1] - row[x], 1e-30f);
+        float u = ((float)x + clamp(du, 0.0f, 1.0f)) / (float)w;
+        float v = ((float)y + clamp(dv, 0.0f, 1.0f)) / (float)h;
+        float theta = v * CLP_PI, phi = (u - 0.5f) * 2.0f * CLP_PI;
+        float st = sin(theta);
+        float3 d = (float3)(st * sin(phi), cos(theta), -st * cos(phi));
+        return env_rotate(fp, d, -1.0f);
+    }
+#endif
+    float z = 1.0f - 2.0f * u1, r = sqrt(fmax(0.0f, 1.0f - z * z)), phi = 2.0f * CLP_PI * u2;
+    return (float3)(r * cos(phi), z, r * sin(phi));
+}
+
+/* ---- picking and sampling ----------------------------------------------- */
+
+inline uint pick_light(global const AliasEntry* alias, uint n, float u) {
+    float x = u * (float)n;
+    uint i = min((uint)x, n - 1);
+    return (x - (float)i) < alias[i].prob ? i : alias[i].alias;
+}
+
+typedef struct {
+    float3 wi;  /* unit direction towards the light */
+    float3 L;   /* radiance (or for delta lights, irradiance-like intensity / r^2) arriving along -wi */
+    float pdf;  /* solid-angle pdf including the pick; for delta lights the pick probability alone */
+    float3 to;  /* the point sampled on the light (finite lights) */
+    int infinite;
+    int delta;
+} LightSample;
+
+inline float triangle_light_area(global const Light* l) {
+    return 0.5f * length(cross(load3g(l->b) - load3g(l->a), load3g(l->c) - load3g(l->a)));
+}
+
+/* Solid-angle pdf of reaching, by light sampling, triangle light li at distance
+ * dist along a ray of direction d. For MIS when a BSDF-sampled ray hits it. */
+inline float triangle_light_pdf(global const Light* lights, global const AliasEntry* alias, uint li, float3 d,
+                                float dist) {
+    global const Light* l = &lights[li];
+    float3 n = cross(load3g(l->b) - load3g(l->a), load3g(l->c) - load3g(l->a));
+    float area2 = length(n);
+    float cos_l = fabs(dot(n, d)) / area2;
+    if (cos_l <= 0.0f) return 0.0f;
+    return alias[li].pmf * dist * dist / (0.5f * area2 * cos_l);
+}
+
+/* Samples a light as seen from p. Returns 0 when it gives nothing. */
+inline int sample_light(global const Light* lights, global const AliasEntry* alias, constant const FrameParams* fp,
+                        const EnvMap* env, float3 p, float u0, float u1, float u2, LightSample* s) {
+    uint li = pick_light(alias, fp->light_count, u0);
+    global const Light* l = &lights[li];
+    float pmf = alias[li].pmf;
+    s->infinite = 0;
+    s->delta = 0;
+    switch (l->type) {
+#ifdef CLP_HAS_TRIANGLE_LIGHTS
+    case CLP_LIGHT_TRIANGLE: {
+        /* Uniform in area: barycentrics by the square-root warp (PBR 4th ed., A.5.5). */
+        float3 a = load3g(l->a), b = load3g(l->b), c = load3g(l->c);
+        float su = sqrt(u1);
+        float b0 = 1.0f - su, b1 = u2 * su;
+        float3 q = b0 * a + b1 * b + (1.0f - b0 - b1) * c;
+        float3 n = cross(b - a, c - a);
+        float area2 = length(n);
+        float3 d = q - p;
+        float dist2 = dot(d, d);
+        if (!(dist2 > 0.0f) || !(area2 > 0.0f)) return 0;
+        float dist = sqrt(dist2);
+        s->wi = d / dist;
+        float cos_l = -dot(n, s->wi) / area2;
+        if (cos_l <= 0.0f && !(l->flags & CLP_LIGHTF_TWO_SIDED)) return 0;
+        cos_l = fabs(cos_l);
+        if (cos_l <= 0.0f) return 0;
+        s->pdf = pmf * dist2 / (0.5f * area2 * cos_l);
+        s->L = load3g(l->L);
+        /* The end of the shadow ray moves off the light by its own error bound. */
+        float3 err = CLP_GAMMA(10) * (fabs(b0 * a) + fabs(b1 * b) + fabs((1.0f - b0 - b1) * c));
+        s->to = offset_ray_origin(q, err, n / area2, -s->wi);
+        return 1;
+    }
+#endif
+#ifdef CLP_HAS_DELTA_LIGHTS
+    case CLP_LIGHT_POINT:
+    case CLP_LIGHT_SPOT: {
+        float3 d = load3g(l->a) - p;
+        float dist2 = dot(d, d);
+        if (!(dist2 > 0.0f)) return 0;
+        s->wi = d * rsqrt(dist2);
+        float falloff = 1.0f;
+        if (l->type == CLP_LIGHT_SPOT)
+            falloff = smoothstep(l->cos_outer, l->cos_inner, dot(-s->wi, load3g(l->b)));
+        s->L = load3g(l->L) * (falloff / dist2);
+        s->pdf = pmf;
+        s->to = load3g(l->a);
+        s->delta = 1;
+        return falloff > 0.0f;
+    }
+    case CLP_LIGHT_DIRECTIONAL:
+        s->wi = -load3g(l->b);
+        s->L = load3g(l->L);
+        s->pdf = pmf;
+        s->infinite = 1;
+        s->delta = 1;
+        return 1;
+#endif
+#ifdef CLP_HAS_ENV
+    case CLP_LIGHT_ENVIRONMENT:
+        s->wi = env_sample_direction(fp, env, u1, u2);
+        s->pdf = pmf * env_pdf(fp, env, s->wi);
+        s->L = env_radiance(fp, env, s->wi);
+        s->infinite = 1;
+        return s->pdf > 0.0f;
+#endif
+    default: return 0;
+    }
+}
+
+/* Multiple importance sampling, Veach's power heuristic (beta = 2). */
+inline float power_heuristic(float pdf_a, float pdf_b) {
+    if (!(pdf_a > 0.0f)) return 0.0f;
+    float r = pdf_b / pdf_a; /* as a ratio: squares of large pdfs would overflow */
+    return 1.0f / (1.0f + r * r);
+}

@@ -1,0 +1,278 @@
+// The BSDFs of kernels/materials.cl, run on the test device: each sampling
+// routine against its own pdf (chi-square, as pbrt's chi2 test), sample weights
+// against evaluation, reciprocity, GGX energy against a numerical integral, and
+// glass against Fresnel's equations and Snell's law.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "scene/scene.hpp"
+#include "support/statistics.hpp"
+#include "support/test_device.hpp"
+
+using namespace clpath;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Samples {
+    std::vector<cl_float4> wi_pdf, weight;
+};
+
+Samples sample(const Material& m, glm::vec3 wo, std::uint32_t n, std::uint32_t seed = 7) {
+    Buffer mb = test::upload(std::vector<Material>{m}, "material");
+    Buffer a = test::device().buffer(n * sizeof(cl_float4), CL_MEM_READ_WRITE, "wi");
+    Buffer b = test::device().buffer(n * sizeof(cl_float4), CL_MEM_READ_WRITE, "weight");
+    Kernel k = test::device().kernel(test::probe_program(), "probe_bsdf_sample");
+    k.arg(0, mb).arg(1, wo.x).arg(2, wo.y).arg(3, wo.z).arg(4, n).arg(5, seed).arg(6, a).arg(7, b);
+    test::run(k, n);
+    return {test::download<cl_float4>(a, n), test::download<cl_float4>(b, n)};
+}
+
+// (f cos, pdf) for each pair.
+std::vector<cl_float4> eval(const Material& m, const std::vector<cl_float4>& wo, const std::vector<cl_float4>& wi) {
+    const auto n = std::uint32_t(wo.size());
+    Buffer mb = test::upload(std::vector<Material>{m}, "material");
+    Buffer a = test::upload(wo), b = test::upload(wi);
+    Buffer out = test::device().buffer(n * sizeof(cl_float4), CL_MEM_READ_WRITE, "eval");
+    Kernel k = test::device().kernel(test::probe_program(), "probe_bsdf_eval");
+    k.arg(0, mb).arg(1, n).arg(2, a).arg(3, b).arg(4, out);
+    test::run(k, n);
+    return test::download<cl_float4>(out, n);
+}
+
+cl_float4 f4(glm::vec3 v) { return cl_float4{{v.x, v.y, v.z, 0.0f}}; }
+
+glm::vec3 from_angle(double theta_deg) {
+    const double t = theta_deg * kPi / 180;
+    return glm::vec3(float(std::sin(t)), 0.0f, float(std::cos(t)));
+}
+
+// Chi-square test of the sampled directions against the routine's own pdf,
+// integrated over each (theta, phi) cell by the midpoint rule on a sub-grid
+// (theta cells rather than cos theta cells resolve narrow lobes near the
+// normal). Samples that end the path form one more cell, whose expected share
+// is what the pdf misses.
+void chi_square_test(const Material& m, double theta_deg, double alpha) {
+    const int nt = 20, nphi = 40, sub = 8;
+    const std::uint32_t n = 200000;
+    const glm::vec3 wo = from_angle(theta_deg);
+    const Samples s = sample(m, wo, n);
+    std::vector<double> observed(nt * nphi + 1, 0.0);
+    for (const auto& w : s.wi_pdf) {
+        if (w.s[3] < 0) {
+            observed.back() += 1;
+            continue;
+        }
+        const double z = w.s[2], phi = std::atan2(double(w.s[1]), double(w.s[0])) + kPi;
+        if (z <= 0) {  // reflection below the surface: must not happen
+            ADD_FAILURE() << "sample below the surface";
+            continue;
+        }
+        const double theta = std::acos(std::min(1.0, z));
+        const int it = std::min(nt - 1, int(theta / (kPi / 2) * nt)), ip = std::min(nphi - 1, int(phi / (2 * kPi) * nphi));
+        observed[it * nphi + ip] += 1;
+    }
+    // The pdf on the sub-grid: d(omega) = sin(theta) d(theta) d(phi).
+    std::vector<cl_float4> wos, wis;
+    std::vector<double> area;
+    const double dt = (kPi / 2) / (nt * sub), dp = 2 * kPi / (nphi * sub);
+    for (int it = 0; it < nt * sub; ++it)
+        for (int ip = 0; ip < nphi * sub; ++ip) {
+            const double theta = (it + 0.5) * dt, phi = (ip + 0.5) * dp - kPi;
+            wos.push_back(f4(wo));
+            wis.push_back(f4(glm::vec3(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)),
+                                       float(std::cos(theta)))));
+            area.push_back(std::sin(theta) * dt * dp);
+        }
+    const auto e = eval(m, wos, wis);
+    std::vector<double> expected(nt * nphi + 1, 0.0);
+    double total = 0;
+    for (int it = 0; it < nt * sub; ++it)
+        for (int ip = 0; ip < nphi * sub; ++ip) {
+            const std::size_t k = std::size_t(it) * nphi * sub + ip;
+            const double p = e[k].s[3] * area[k] * n;
+            expected[(it / sub) * nphi + ip / sub] += p;
+            total += p;
+        }
+    expected.back() = std::max(0.0, double(n) - total);
+    const test::ChiSquare c = test::chi_square(observed, expected);
+    EXPECT_GT(c.p_value, alpha) << "chi2 " << c.statistic << " dof " << c.dof << " at theta " << theta_deg;
+}
+
+// The sub-grid integration itself has an error; 8 tests share alpha = 1e-3 (Sidak).
+const double kAlpha = 1 - std::pow(1 - 1e-3, 1.0 / 8);
+
+}  // namespace
+
+TEST(Materials, DiffuseSamplingMatchesPdf) {
+    for (double theta : {0.0, 60.0}) chi_square_test(diffuse(glm::vec3(0.7f)), theta, kAlpha);
+}
+
+TEST(Materials, ConductorSamplingMatchesPdf) {
+    for (float rough : {0.3f, 0.6f, 0.9f})
+        for (double theta : {10.0, 70.0}) {
+            SCOPED_TRACE(rough);
+            chi_square_test(conductor(glm::vec3(0.9f), rough), theta, kAlpha);
+        }
+}
+
+// For every non-delta sample, weight = eval / pdf, as one definition must give.
+TEST(Materials, SampleWeightEqualsEvalOverPdf) {
+    for (const Material& m : {diffuse(glm::vec3(0.5f, 0.6f, 0.7f)), conductor(glm::vec3(0.9f, 0.6f, 0.3f), 0.5f)}) {
+        const glm::vec3 wo = from_angle(40);
+        const Samples s = sample(m, wo, 2000);
+        std::vector<cl_float4> wos, wis;
+        for (const auto& w : s.wi_pdf)
+            if (w.s[3] > 0) {
+                wos.push_back(f4(wo));
+                wis.push_back(w);
+            }
+        const auto e = eval(m, wos, wis);
+        std::size_t j = 0;
+        for (std::size_t i = 0; i < s.wi_pdf.size(); ++i) {
+            if (!(s.wi_pdf[i].s[3] > 0)) continue;
+            EXPECT_NEAR(e[j].s[3], s.wi_pdf[i].s[3], 1e-4 * s.wi_pdf[i].s[3]);
+            for (int c = 0; c < 3; ++c) {
+                const double w = e[j].s[c] / e[j].s[3];
+                // Both sides are ~50 float operations apart: gamma(256) each, as a relative bound.
+                EXPECT_NEAR(s.weight[i].s[c], w, 2 * 256 * 0x1.0p-24 * std::abs(w) + 1e-7);
+            }
+            ++j;
+        }
+    }
+}
+
+// f(wo, wi) = f(wi, wo) for every non-delta BSDF (Helmholtz reciprocity).
+TEST(Materials, Reciprocity) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0, 1);
+    auto dir = [&] {  // cos theta in [0.1, 1]: away from grazing, where 1/cos amplifies rounding
+        const float z = 0.1f + 0.9f * u(rng), phi = float(2 * kPi) * u(rng), r = std::sqrt(1 - z * z);
+        return glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
+    };
+    for (const Material& m : {diffuse(glm::vec3(0.8f)), conductor(glm::vec3(0.95f, 0.7f, 0.4f), 0.4f),
+                              conductor(glm::vec3(1.0f), 0.9f)}) {
+        std::vector<cl_float4> a, b;
+        for (int i = 0; i < 1000; ++i) {
+            a.push_back(f4(dir()));
+            b.push_back(f4(dir()));
+        }
+        const auto ab = eval(m, a, b), ba = eval(m, b, a);
+        for (int i = 0; i < 1000; ++i)
+            for (int c = 0; c < 3; ++c) {
+                const double f1 = ab[i].s[c] / b[i].s[2], f2 = ba[i].s[c] / a[i].s[2];
+                // The two evaluations round differently (about 60 operations
+                // each, with OpenCL's 3-ulp sqrt and division): gamma(512).
+                EXPECT_NEAR(f1, f2, 512 * 0x1.0p-24 * std::max(f1, f2) + 1e-9) << "pair " << i;
+            }
+    }
+}
+
+// Directional albedo of a GGX conductor with F = 1, by quadrature in double
+// with formulas written out here (Walter et al. 2007; Heitz 2014).
+double ggx_albedo(double alpha, double theta_o) {
+    auto lambda = [&](double cos_t) {
+        const double t2 = (1 - cos_t * cos_t) / (cos_t * cos_t);
+        return 0.5 * (std::sqrt(1 + alpha * alpha * t2) - 1);
+    };
+    const double wo[3] = {std::sin(theta_o), 0, std::cos(theta_o)};
+    const int nt = 800, np = 800;
+    double sum = 0;
+    for (int i = 0; i < nt; ++i) {
+        const double z = (i + 0.5) / nt;
+        for (int j = 0; j < np; ++j) {
+            const double phi = (j + 0.5) / np * 2 * kPi, r = std::sqrt(1 - z * z);
+            const double wi[3] = {r * std::cos(phi), r * std::sin(phi), z};
+            double h[3] = {wo[0] + wi[0], wo[1] + wi[1], wo[2] + wi[2]};
+            const double hl = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+            const double hz = h[2] / hl;
+            const double a2 = alpha * alpha, d = hz * hz * (a2 - 1) + 1;
+            const double D = a2 / (kPi * d * d);
+            const double G = 1 / (1 + lambda(wo[2]) + lambda(z));
+            sum += D * G / (4 * wo[2]) * (1.0 / nt) * (2 * kPi / np);  // f cos_i d(omega), f = DG/(4 cos_o cos_i)
+        }
+    }
+    return sum;
+}
+
+TEST(Materials, GgxEnergyLossMatchesItsIntegral) {
+    for (float rough : {0.5f, 0.9f})
+        for (double theta : {0.0, 60.0}) {
+            const double alpha = double(rough) * rough;
+            const Samples s = sample(conductor(glm::vec3(1.0f), rough), from_angle(theta), 400000);
+            std::vector<double> w;
+            for (const auto& x : s.weight) w.push_back(x.s[0]);  // failed samples weigh 0
+            const auto m = test::mean_error(w);
+            const double expected = ggx_albedo(alpha, theta * kPi / 180);
+            EXPECT_LE(expected, 1.0);
+            EXPECT_LE(m.mean, 1.0 + 4.4 * m.std_error) << "GGX must never create energy";
+            // alpha 1e-5 two-sided (z = 4.4), plus the quadrature's own error (< 1e-3 on this grid).
+            EXPECT_NEAR(m.mean, expected, 4.4 * m.std_error + 1e-3)
+                << "roughness " << rough << " theta " << theta << ": " << m.mean << " +- " << m.std_error;
+            if (rough > 0.8f) {
+                EXPECT_LT(expected, 0.95);
+            }  // rough GGX does lose energy: multiple scattering is not modelled
+        }
+}
+
+TEST(Materials, MirrorReflectsExactly) {
+    const glm::vec3 wo = glm::normalize(glm::vec3(0.3f, -0.4f, 0.8f));
+    const Samples s = sample(mirror(glm::vec3(0.9f, 0.8f, 0.7f)), wo, 64);
+    for (std::size_t i = 0; i < 64; ++i) {
+        EXPECT_FLOAT_EQ(s.wi_pdf[i].s[0], -wo.x);
+        EXPECT_FLOAT_EQ(s.wi_pdf[i].s[1], -wo.y);
+        EXPECT_FLOAT_EQ(s.wi_pdf[i].s[2], wo.z);
+        EXPECT_FLOAT_EQ(s.weight[i].s[0], 0.9f);
+        EXPECT_EQ(s.weight[i].s[3], 1.0f);  // delta
+    }
+}
+
+namespace {
+double fresnel(double cos_i, double eta) {
+    const double sin2_t = (1 - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= 1) return 1;
+    const double cos_t = std::sqrt(1 - sin2_t);
+    const double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t), rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    return 0.5 * (rp * rp + rs * rs);
+}
+}  // namespace
+
+// From outside (wo.z > 0) and inside: the reflected share is Fresnel's
+// reflectance (binomial tolerance), refraction obeys Snell's law, radiance is
+// scaled by 1/eta^2, and beyond the critical angle everything reflects.
+TEST(Materials, GlassFollowsFresnelAndSnell) {
+    const float ior = 1.5f;
+    const Material glass = dielectric(ior);
+    for (double theta : {0.0, 30.0, 60.0, 85.0, 180.0 - 30.0, 180.0 - 40.0, 180.0 - 60.0}) {
+        const glm::vec3 wo = from_angle(theta);
+        const bool outside = wo.z > 0;
+        const double eta = outside ? ior : 1.0 / ior;
+        const double F = fresnel(std::abs(wo.z), eta);
+        const std::uint32_t n = 100000;
+        const Samples s = sample(glass, wo, n);
+        double reflected = 0;
+        const double sin_i = std::sqrt(1 - double(wo.z) * wo.z);
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const auto& w = s.wi_pdf[i];
+            ASSERT_GE(w.s[3], 0) << "glass never ends a path";
+            EXPECT_EQ(s.weight[i].s[3], 1.0f);
+            if ((w.s[2] > 0) == outside) {
+                reflected += 1;
+                EXPECT_FLOAT_EQ(s.weight[i].s[0], 1.0f);
+                EXPECT_NEAR(w.s[2], wo.z, 1e-6);
+            } else {
+                const double sin_t = std::sqrt(double(w.s[0]) * w.s[0] + double(w.s[1]) * w.s[1]);
+                EXPECT_NEAR(sin_t * eta, sin_i, 1e-5) << "Snell";
+                EXPECT_NEAR(s.weight[i].s[0], 1.0 / (eta * eta), 1e-6);
+            }
+        }
+        const double share = reflected / n, sd = std::sqrt(F * (1 - F) / n);
+        EXPECT_NEAR(share, F, 4.4 * sd + 1.0 / n) << "theta " << theta;
+    }
+    // Inside, beyond the critical angle asin(1/1.5) = 41.8 degrees: total internal reflection.
+    const Samples tir = sample(glass, from_angle(180.0 - 50.0), 1000);
+    for (const auto& w : tir.wi_pdf) EXPECT_LT(w.s[2], 0.0f);
+}

@@ -1,0 +1,293 @@
+// Light transport against closed-form answers and against itself: furnaces
+// for every material, delta lights against their analytic radiance, ambient
+// occlusion against its integral, and statistical equality of estimators that
+// must agree (NEE + MIS vs BSDF sampling, environment importance sampling vs
+// uniform, specialised vs all-features kernels).
+#include <cmath>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "scene/builtin_scenes.hpp"
+#include "scene/shapes.hpp"
+#include "support/image_agreement.hpp"
+#include "support/render_helpers.hpp"
+#include "support/statistics.hpp"
+
+using namespace clpath;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::vector<Image> runs(const Scene& scene, RenderSettings st, std::uint32_t spp, int k, std::uint32_t seed0) {
+    std::vector<Image> out;
+    for (int i = 0; i < k; ++i) {
+        st.seed = seed0 + std::uint32_t(i);
+        RenderStats stats;
+        out.push_back(test::render(scene, st, spp, &stats).linear);
+        EXPECT_EQ(stats.nonfinite, 0u);
+    }
+    return out;
+}
+
+// An object of one material under a constant white-ish sky.
+Scene sky_furnace(const Material& m, glm::vec3 le, bool camera_inside) {
+    Scene s;
+    s.name = "sky-furnace";
+    const auto id = s.add_material("object", m);
+    s.add_triangles(make_icosphere(2), id);
+    s.environment.color = le;
+    s.camera.eye = camera_inside ? glm::vec3(0.1f, 0.05f, -0.2f) : glm::vec3(0, 0, -3);
+    s.camera.target = {0, 0, 1};
+    s.camera.vfov_degrees = camera_inside ? 60 : 40;
+    s.camera.width = s.camera.height = 24;
+    return s;
+}
+
+test::MeanError furnace_mean(const Scene& s, int c, std::uint32_t integrator = CLP_INTEGRATOR_PATH) {
+    RenderSettings st;
+    st.integrator = integrator;
+    st.max_depth = 64;
+    st.seed = 5;
+    RenderStats stats;
+    const auto img = test::render(s, st, 64, &stats).linear;
+    EXPECT_EQ(stats.nonfinite, 0u);
+    return test::mean_error(test::channel(img, c));
+}
+
+const glm::vec3 kSky(0.9f, 0.6f, 0.3f);
+// Three channels per check, alpha 1e-4 each.
+const double kZ = 3.89;
+
+}  // namespace
+
+// Albedo-1 diffuse and mirror surfaces, and glass, return exactly the sky's
+// radiance: every pixel's expectation is Le. (Float rounding of the path's
+// products adds a relative gamma(4 per bounce x 64 bounces).)
+TEST(LightTransport, FurnaceConservesEnergy) {
+    for (const Material& m : {diffuse(glm::vec3(1.0f)), mirror(glm::vec3(1.0f)), dielectric(1.5f)}) {
+        for (auto integrator : {CLP_INTEGRATOR_PATH, CLP_INTEGRATOR_PATH_BSDF}) {
+            const Scene s = sky_furnace(m, kSky, false);
+            for (int c = 0; c < 3; ++c) {
+                const auto e = furnace_mean(s, c, integrator);
+                EXPECT_NEAR(e.mean, kSky[c], kZ * e.std_error + kSky[c] * 256 * 0x1.0p-24)
+                    << "kind " << m.kind << " integrator " << integrator << " channel " << c;
+            }
+        }
+    }
+}
+
+// Seen from inside, glass shows the sky n^2 times brighter: radiance is
+// compressed into the denser medium (the 1/eta^2 of each refraction).
+TEST(LightTransport, GlassSeenFromInside) {
+    const float ior = 1.5f;
+    const Scene s = sky_furnace(dielectric(ior), kSky, true);
+    for (int c = 0; c < 3; ++c) {
+        const auto e = furnace_mean(s, c);
+        const double expected = kSky[c] * ior * ior;
+        EXPECT_NEAR(e.mean, expected, kZ * e.std_error + expected * 256 * 0x1.0p-24) << "channel " << c;
+    }
+}
+
+// A GGX conductor with F0 = 1 never returns more than it receives, and rough
+// ones visibly less (single scattering only).
+TEST(LightTransport, GgxNeverCreatesEnergy) {
+    const Scene s = sky_furnace(conductor(glm::vec3(1.0f), 0.8f), kSky, false);
+    for (int c = 0; c < 3; ++c) {
+        const auto e = furnace_mean(s, c);
+        EXPECT_LE(e.mean, kSky[c] + kZ * e.std_error);
+        EXPECT_LT(e.mean, kSky[c] * 0.99);
+    }
+}
+
+namespace {
+// A large diffuse floor (y = 0) seen through a narrow camera aimed at `at`,
+// so every sample lands within a hair of that point.
+Scene floor_scene(glm::vec3 albedo, glm::vec3 at) {
+    Scene s;
+    s.name = "floor";
+    const auto id = s.add_material("floor", diffuse(albedo));
+    s.add_triangles(transformed(make_plane(), shape_transform({0, 0, 0}, {0, 0, 0}, {100, 1, 100})), id);
+    s.camera.eye = at + glm::vec3(0, 2, -1);
+    s.camera.target = at;
+    s.camera.vfov_degrees = 0.01f;
+    s.camera.width = s.camera.height = 8;
+    return s;
+}
+}  // namespace
+
+// Delta lights against the rendering equation in closed form: a Lambertian
+// floor of albedo rho lit by intensity I from distance r at incidence theta
+// has radiance rho/pi I cos(theta) / r^2 (directional: rho/pi E cos(theta)).
+TEST(LightTransport, DeltaLightsMatchClosedForm) {
+    const glm::vec3 at(0.3f, 0, 0.2f), rho(0.5f, 0.7f, 0.9f);
+    struct Case {
+        PunctualLight light;
+        double cos_theta, r2;
+    };
+    PunctualLight point;
+    point.position = {1.3f, 2.0f, 0.2f};
+    point.intensity = glm::vec3(3.0f);
+    PunctualLight spot = point;
+    spot.type = PunctualLight::Type::Spot;
+    spot.direction = at - spot.position;
+    PunctualLight sun;
+    sun.type = PunctualLight::Type::Directional;
+    sun.direction = glm::normalize(glm::vec3(-1, -2, 0.5f));
+    sun.intensity = glm::vec3(2.0f);
+    const glm::vec3 to_point = point.position - at;
+    const double cos_p = to_point.y / glm::length(to_point), r2 = glm::dot(to_point, to_point);
+    for (const Case& k : {Case{point, cos_p, r2}, Case{spot, cos_p, r2}, Case{sun, -double(sun.direction.y), 1.0}}) {
+        Scene s = floor_scene(rho, at);
+        s.lights = {k.light};
+        RenderSettings st;
+        st.max_depth = 1;  // direct light only: the floor sees nothing else
+        const auto img = test::render(s, st, 4).linear;
+        for (int c = 0; c < 3; ++c) {
+            const double expected = rho[c] / kPi * k.light.intensity[c] * k.cos_theta / k.r2;
+            const auto m = test::mean_error(test::channel(img, c));
+            // The 0.01-degree view spreads the points by ~3e-4 of the distance: the
+            // radiance varies by less than that relative amount; rounding far less.
+            EXPECT_NEAR(m.mean, expected, 1e-3 * expected) << "light type " << int(k.light.type) << " channel " << c;
+        }
+    }
+}
+
+// Ambient occlusion: an open plane is exactly 1; next to a wall at distance x,
+// with rays of length D, the occluded share of the cosine-weighted hemisphere
+// is the measure of directions reaching the wall within D, by quadrature.
+TEST(LightTransport, AmbientOcclusionOpenPlaneAndCorner) {
+    RenderSettings st;
+    st.integrator = CLP_INTEGRATOR_AO;
+    st.ao_distance = 1.0f;
+    {
+        const auto img = test::render(floor_scene(glm::vec3(0.5f), {0, 0, 0}), st, 16).linear;
+        for (float v : img.rgb) ASSERT_EQ(v, 1.0f);
+    }
+    const double x = 0.25, D = 1.0;
+    Scene s = floor_scene(glm::vec3(0.5f), {float(x), 0, 0});
+    // A wall in the plane x = 0 facing +x, from the floor up.
+    const auto wall = s.add_material("wall", diffuse(glm::vec3(0.5f)));
+    s.add_triangles(transformed(make_plane(), shape_transform({0, 50, 0}, {0, 0, float(-kPi / 2)}, {100, 1, 100})),
+                    wall);
+    s.camera.eye = glm::vec3(float(x) + 2, 2, 0);  // from the open side, so the wall does not block the view
+    s.camera.target = {float(x), 0, 0};
+    RenderStats stats;
+    const auto img = test::render(s, st, 256, &stats).linear;
+    // Quadrature: direction (sin t cos p, cos t, sin t sin p) about the floor's +y
+    // normal, pdf cos t sin t / pi; it meets the wall within D when it heads to
+    // -x and x / (sin t |cos p|) < D.
+    double blocked = 0;
+    const int n = 2000;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const double t = (i + 0.5) / n * kPi / 2, p = (j + 0.5) / n * 2 * kPi;
+            const double dx = std::sin(t) * std::cos(p);
+            if (dx < 0 && x / -dx < D) blocked += std::cos(t) * std::sin(t) / kPi * (kPi / 2 / n) * (2 * kPi / n);
+        }
+    const auto m = test::mean_error(test::channel(img, 0));
+    EXPECT_NEAR(m.mean, 1 - blocked, 4.4 * m.std_error + 1e-4) << "quadrature " << 1 - blocked;
+}
+
+namespace {
+// The thesis box with a glossy box and a glass ball added: every kind of
+// path the integrators treat differently.
+Scene mixed_cornell() {
+    Scene s = cornell_thesis_scene();
+    const auto glossy = s.add_material("test-glossy", conductor(glm::vec3(0.9f, 0.8f, 0.6f), 0.4f));
+    const auto glass = s.add_material("test-glass", dielectric(1.5f));
+    const auto chrome = s.add_material("test-mirror", mirror(glm::vec3(0.9f)));
+    s.add_triangles(transformed(make_icosphere(2), shape_transform({-0.25f, 0.0f, -0.25f}, {0, 0, 0}, glm::vec3(0.1f))),
+                    glass);
+    s.add_triangles(transformed(make_box(), shape_transform({0.25f, 0.0f, -0.3f}, {0, 0.4f, 0}, glm::vec3(0.12f))),
+                    glossy);
+    s.add_triangles(transformed(make_icosphere(1), shape_transform({0.0f, 0.6f, 0.2f}, {0, 0, 0}, glm::vec3(0.08f))),
+                    chrome);
+    s.camera.width = 40;
+    s.camera.height = 32;
+    return s;
+}
+}  // namespace
+
+// Next-event estimation with MIS and BSDF sampling alone estimate the same
+// image: equal in distribution, block by block.
+TEST(LightTransport, NeeAndBsdfSamplingAgree) {
+    const Scene s = mixed_cornell();
+    RenderSettings st;
+    st.max_depth = 6;
+    st.integrator = CLP_INTEGRATOR_PATH;
+    const auto a = runs(s, st, 32, 4, 100);
+    st.integrator = CLP_INTEGRATOR_PATH_BSDF;
+    const auto b = runs(s, st, 64, 4, 200);
+    const auto r = test::image_agreement(a, b);
+    EXPECT_TRUE(r.ok()) << r.describe();
+}
+
+// The same test must see a real difference: one bounce less is another image.
+TEST(LightTransport, AgreementTestDetectsMissingBounce) {
+    const Scene s = mixed_cornell();
+    RenderSettings st;
+    st.max_depth = 3;
+    const auto a = runs(s, st, 16, 4, 300);
+    st.max_depth = 2;
+    const auto b = runs(s, st, 16, 4, 400);
+    EXPECT_FALSE(test::image_agreement(a, b).ok());
+}
+
+// Kernels specialised to the scene and kernels with every feature compiled in
+// give the same image in distribution.
+TEST(LightTransport, SpecialisedAndAllFeatureKernelsAgree) {
+    const Scene s = mixed_cornell();
+    RenderSettings st;
+    st.max_depth = 6;
+    const auto a = runs(s, st, 16, 4, 500);
+    st.all_features = true;
+    const auto b = runs(s, st, 16, 4, 600);
+    const auto r = test::image_agreement(a, b);
+    EXPECT_TRUE(r.ok()) << r.describe();
+}
+
+namespace {
+// A small equirectangular sky with a bright sun and a gradient, as PFM.
+std::string write_sky(const std::string& name) {
+    Image img;
+    img.width = 32;
+    img.height = 16;
+    img.rgb.resize(32 * 16 * 3);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 32; ++x)
+            for (int c = 0; c < 3; ++c) {
+                float v = 0.2f + 0.4f * float(16 - y) / 16 * (c == 2 ? 1.0f : 0.6f);
+                if (x == 20 && y == 4) v = 400.0f;  // the sun: most of the power in one texel
+                img.rgb[(y * 32 + x) * 3 + c] = v;
+            }
+    const std::string path = (std::filesystem::temp_directory_path() / name).string();
+    write_pfm(path, img);
+    return path;
+}
+}  // namespace
+
+// Importance sampling the environment changes the noise, not the image.
+TEST(LightTransport, EnvironmentImportanceSamplingAgreesWithUniform) {
+    Scene s;
+    s.name = "sky";
+    const auto ground = s.add_material("ground", diffuse(glm::vec3(0.6f)));
+    const auto ball = s.add_material("ball", conductor(glm::vec3(0.9f), 0.5f));
+    s.add_triangles(transformed(make_plane(), shape_transform({0, 0, 0}, {0, 0, 0}, {10, 1, 10})), ground);
+    s.add_triangles(transformed(make_icosphere(2), shape_transform({0, 0.5f, 0}, {0, 0, 0}, glm::vec3(0.5f))), ball);
+    s.environment.image = write_sky("clpath-test-sky.pfm");
+    s.environment.rotation_degrees = 30;
+    s.camera.eye = {0, 1.2f, -3};
+    s.camera.target = {0, 0.4f, 0};
+    s.camera.width = 32;
+    s.camera.height = 24;
+    RenderSettings st;
+    st.max_depth = 4;
+    const auto a = runs(s, st, 32, 4, 700);
+    s.environment.importance_sampled = false;
+    const auto b = runs(s, st, 128, 4, 800);
+    const auto r = test::image_agreement(a, b);
+    EXPECT_TRUE(r.ok()) << r.describe();
+    std::filesystem::remove(s.environment.image);
+}
