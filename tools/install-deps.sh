@@ -7,12 +7,15 @@ if [ "$(id -u)" -ne 0 ]; then
     echo "install-deps.sh: run as root (it calls apt-get install)" >&2
     exit 1
 fi
+# libclang-rt-14-dev holds libFuzzer and the sanitizer runtimes for the fuzz tests;
+# clang only recommends it, and recommends are not installed here.
+# xauth: xvfb-run (the viewer tests) needs it; xvfb only recommends it.
 packages="
-    build-essential cmake pkg-config clang
+    build-essential cmake pkg-config clang libclang-rt-14-dev
     pocl-opencl-icd ocl-icd-opencl-dev opencl-headers clinfo
     libglm-dev libglfw3-dev libopenimageio-dev openimageio-tools
     libtinyobjloader-dev nlohmann-json3-dev libcli11-dev libgtest-dev
-    xvfb libimgui-dev glmark2-data
+    xvfb xauth libimgui-dev glmark2-data
     python3-numpy python3-matplotlib
 "
 missing=""

@@ -1,5 +1,7 @@
 #include "cl/context.hpp"
 
+#include <algorithm>
+#include <cstdlib>
 #include <sstream>
 
 #include "util/error.hpp"
@@ -27,6 +29,17 @@ Context::Context(const DeviceInfo& device) : device_(device) {
     }
 }
 
+Context::Context(const DeviceInfo& device, const std::vector<cl_context_properties>& properties) : device_(device) {
+    cl_int err = CL_SUCCESS;
+    ctx_ = clCreateContext(properties.empty() ? nullptr : properties.data(), 1, &device_.device, nullptr, nullptr, &err);
+    cl_check(err, "clCreateContext (with properties) on " + device_.name);
+    queue_ = clCreateCommandQueue(ctx_, device_.device, CL_QUEUE_PROFILING_ENABLE, &err);
+    if (err != CL_SUCCESS) {
+        clReleaseContext(ctx_);
+        cl_check(err, "clCreateCommandQueue on " + device_.name);
+    }
+}
+
 Context::~Context() {
     if (queue_) {
         clFinish(queue_);
@@ -36,16 +49,26 @@ Context::~Context() {
 }
 
 void Context::check_fits(const std::vector<std::pair<std::string, std::size_t>>& buffers) const {
+    // CLPATH_DEVICE_MEMORY_LIMIT (bytes) makes the device look smaller, so that
+    // refusing a scene too large for it can be tested on any machine.
+    std::size_t max_alloc = device_.max_alloc, global_mem = device_.global_mem;
+    std::string limited;
+    if (const char* env = std::getenv("CLPATH_DEVICE_MEMORY_LIMIT"); env && *env) {
+        const std::size_t limit = std::strtoull(env, nullptr, 10);
+        max_alloc = std::min(max_alloc, limit);
+        global_mem = std::min(global_mem, limit);
+        limited = " (limited by CLPATH_DEVICE_MEMORY_LIMIT)";
+    }
     std::size_t total = allocated_;
     for (const auto& [what, bytes] : buffers) {
-        if (bytes > device_.max_alloc)
+        if (bytes > max_alloc)
             throw Error(what + " needs " + mib(bytes) + ", more than " + device_.name +
-                        " allows in one buffer (CL_DEVICE_MAX_MEM_ALLOC_SIZE = " + mib(device_.max_alloc) + ")");
+                        " allows in one buffer (CL_DEVICE_MAX_MEM_ALLOC_SIZE = " + mib(max_alloc) + ")" + limited);
         total += bytes;
     }
-    if (total > device_.global_mem)
-        throw Error("the scene's buffers need " + mib(total) + " in all, more than the " + mib(device_.global_mem) +
-                    " of global memory of " + device_.name);
+    if (total > global_mem)
+        throw Error("the scene's buffers need " + mib(total) + " in all, more than the " + mib(global_mem) +
+                    " of global memory of " + device_.name + limited);
 }
 
 Buffer Context::buffer(std::size_t bytes, cl_mem_flags flags, const std::string& what, const void* init) {

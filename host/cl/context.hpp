@@ -73,6 +73,8 @@ private:
 class Context {
 public:
     explicit Context(const DeviceInfo& device);
+    // With context properties (zero-terminated), e.g. to share with OpenGL (cl/gl_sharing.hpp).
+    Context(const DeviceInfo& device, const std::vector<cl_context_properties>& properties);
     ~Context();
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;

@@ -12,5 +12,6 @@ using Command = std::function<int()>;
 Command add_render_command(CLI::App& app);
 Command add_devices_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
+Command add_view_command(CLI::App& app);
 
 }  // namespace clpath

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
     add(clpath::add_render_command);
     add(clpath::add_devices_command);
     add(clpath::add_compare_command);
+    add(clpath::add_view_command);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

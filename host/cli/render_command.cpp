@@ -37,7 +37,13 @@ struct RenderOptions {
 
 int run_render(const RenderOptions& o) {
     // Everything that can be checked before rendering is checked first.
+    const auto load_start = std::chrono::steady_clock::now();
     Scene scene = load_scene(o.scene);
+    const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
+    for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
+    if (!o.quiet)
+        std::fprintf(stderr, "clpath: loaded '%s' from %s in %.3f s: %zu triangles, %zu materials\n", scene.name.c_str(),
+                     o.scene.c_str(), load_seconds, scene.triangle_count(), scene.materials.size());
     if (o.spp) scene.render.spp = std::uint32_t(std::min<std::uint64_t>(*o.spp, kMaxSamplesPerPixel));
     if (o.max_depth) scene.render.max_depth = *o.max_depth;
     if (o.seed) scene.render.seed = *o.seed;
@@ -70,7 +76,15 @@ int run_render(const RenderOptions& o) {
         std::fprintf(stderr, "clpath: rendering '%s' (%zu triangles) at %dx%d with '%s' on %s\n", scene.name.c_str(),
                      scene.triangle_count(), scene.camera.width, scene.camera.height,
                      integrator_name(settings.integrator), device.describe().c_str());
-    Renderer renderer(ctx, scene, settings);
+    // A scene too large for the device is found here, before any allocation;
+    // the message then names the scene it is about.
+    std::unique_ptr<Renderer> renderer_ptr;
+    try {
+        renderer_ptr = std::make_unique<Renderer>(ctx, scene, settings);
+    } catch (const Error& e) {
+        throw Error(o.scene + ": " + e.what());
+    }
+    Renderer& renderer = *renderer_ptr;
     if (!o.quiet)
         std::fprintf(stderr, "clpath: %s; kernels %s in %.2f s\n", describe(renderer.bvh_stats()).c_str(),
                      renderer.compiled_from_cache() ? "loaded from cache" : "compiled", renderer.compile_seconds());

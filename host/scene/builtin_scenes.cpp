@@ -1,5 +1,8 @@
 #include "scene/builtin_scenes.hpp"
 
+#include <cmath>
+#include <cstdlib>
+
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -55,10 +58,44 @@ Scene cornell_thesis_scene() {
     return s;
 }
 
-std::vector<std::string> builtin_scene_names() { return {"cornell"}; }
+Scene scaling_scene(std::size_t triangles) {
+    if (triangles < 100 || triangles > 50'000'000)
+        throw Error("scaling:" + std::to_string(triangles) + ": the triangle count must be in [100, 50000000]");
+    Scene s = cornell_thesis_scene();
+    // The room is the thesis scene's first 12 triangles (five walls and the lamp).
+    const std::size_t room = 12;
+    s.vertices.resize(room * 3);
+    s.triangle_material.resize(room);
+    s.name = "scaling";
+    // The sphere's bumps stay the same at every count: only the tessellation
+    // changes, so the BVH and traversal see the same shape in more pieces.
+    Bumps bumps;
+    bumps.kind = Bumps::Kind::Sine;
+    bumps.amplitude = 0.06f;
+    bumps.frequency = 1.5f;
+    const ShapeMesh sphere = make_uv_sphere(triangles - room, bumps);
+    const std::uint32_t white = 0;  // "default"
+    // Where the thesis's front sphere stands, larger, just above the floor; x
+    // mirrored like the rest of the built-in scene (it is centred, so no change).
+    const glm::mat4 place = shape_transform({0, 0.17f, -0.1f}, {0, 0, 0}, glm::vec3(0.25f));
+    s.add_triangles(transformed(sphere.vertices, place), white);
+    s.name = "scaling-" + std::to_string(s.triangle_count());
+    return s;
+}
+
+std::vector<std::string> builtin_scene_names() { return {"cornell", "scaling:N"}; }
 
 Scene builtin_scene(const std::string& name) {
     if (name == "cornell") return cornell_thesis_scene();
+    if (name.rfind("scaling:", 0) == 0) {
+        // "scaling:1000000" or "scaling:1e6".
+        const std::string count = name.substr(8);
+        char* end = nullptr;
+        const double n = std::strtod(count.c_str(), &end);
+        if (count.empty() || *end != '\0' || !(n >= 1) || n != std::floor(n) || n > 1e12)
+            throw Error(name + ": expected scaling:N with N a whole number of triangles, e.g. scaling:100000 or scaling:1e6");
+        return scaling_scene(std::size_t(n));
+    }
     std::string names;
     for (const auto& n : builtin_scene_names()) names += " " + n;
     throw Error("no built-in scene named '" + name + "' (built-in:" + names + ")");

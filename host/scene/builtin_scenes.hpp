@@ -1,5 +1,6 @@
 #pragma once
 // Scenes built in code, available without any file.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -11,7 +12,14 @@ namespace clpath {
 // surface diffuse: the default scene.
 Scene cornell_thesis_scene();
 
-// Names accepted by builtin_scene(), and the scene for one of them (throws
+// The triangle-count scaling scene: the thesis room (walls and lamp, all
+// diffuse) around one bumpy UV sphere where the thesis's front sphere stands,
+// with about `triangles` triangles in all (the sphere gets what the room
+// leaves); the sphere's size on screen is the same whatever the count.
+// Accepted counts: 100 to 50,000,000. Its name carries the actual count.
+Scene scaling_scene(std::size_t triangles);
+
+// Names accepted by builtin_scene() ("scaling:N" stands for every count N), and the scene for one of them (throws
 // clpath::Error for an unknown name).
 std::vector<std::string> builtin_scene_names();
 Scene builtin_scene(const std::string& name);

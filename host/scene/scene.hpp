@@ -69,6 +69,9 @@ struct Scene {
     Environment environment;
     Camera camera;
     SceneRenderDefaults render;
+    // What loading dropped, ignored or fell back on (degenerate triangles,
+    // texture maps, ...), one line each; the program that loaded it prints them.
+    std::vector<std::string> warnings;
 
     std::size_t triangle_count() const { return triangle_material.size(); }
     // Adds a material and returns its index; names must be unique.

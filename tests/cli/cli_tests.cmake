@@ -28,3 +28,68 @@ clpath_cli_test(bad_spp FAIL ARGS render --spp 0 OUTPUT "spp")
 clpath_cli_test(bad_spp_text FAIL ARGS render --spp many OUTPUT "spp")
 clpath_cli_test(bad_rr FAIL ARGS render --rr sometimes OUTPUT "rr")
 clpath_cli_test(no_subcommand FAIL ARGS "" OUTPUT "subcommand")
+
+# --- scenes: bundled scenes render, bad scene input fails cleanly ---------------------
+# Like clpath_cli_test, with extra environment variables (ENV "A=1;B=2").
+set(SCENE_DATA ${CMAKE_CURRENT_SOURCE_DIR}/scene/data)
+function(clpath_scene_cli_test name)
+    cmake_parse_arguments(T "FAIL" "OUTPUT;FORBID" "ARGS;ENV" ${ARGN})
+    add_test(NAME cli.scene.${name}
+             COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:clpath>;${T_ARGS}" -DEXPECT_FAIL=${T_FAIL}
+                     "-DEXPECT_OUTPUT=${T_OUTPUT}" -DFORBID_FILE=${T_FORBID}
+                     -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/expect.cmake)
+    set_tests_properties(cli.scene.${name} PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV};${T_ENV}" TIMEOUT 300)
+endfunction()
+
+foreach(scene cornell-thesis cornell-thesis-diffuse cornell-classic bunny)
+    clpath_scene_cli_test(render_${scene} ARGS render ${CMAKE_SOURCE_DIR}/scenes/${scene}.json --spp 1 --width 40
+                          --height 32 -o ${CLI_OUT}/${scene}.pfm
+                          OUTPUT "summary: .*nonfinite=0.*loaded '${scene}' from .* in [0-9.]+ s.*BVH: .* built in ")
+endforeach()
+clpath_scene_cli_test(render_scaling ARGS render scaling:10000 --spp 1 --width 40 --height 32 -o ${CLI_OUT}/scaling.pfm
+                      OUTPUT "triangles=10008 .*loaded 'scaling-10008' from scaling:10000")
+clpath_scene_cli_test(render_bare_obj ARGS render /usr/share/glmark2/models/bunny.obj --spp 1 --width 40 --height 32
+                      -o ${CLI_OUT}/bare-bunny.pfm OUTPUT "triangles=69666 ")
+
+clpath_scene_cli_test(file_not_found FAIL ARGS render ${SCENE_DATA}/no-such-scene.json -o ${CLI_OUT}/nf.pfm
+                      OUTPUT "no-such-scene.json: no such file" FORBID ${CLI_OUT}/nf.pfm)
+clpath_scene_cli_test(folder_not_file FAIL ARGS render ${SCENE_DATA} -o ${CLI_OUT}/folder.pfm
+                      OUTPUT "data: is a folder, not a scene file" FORBID ${CLI_OUT}/folder.pfm)
+clpath_scene_cli_test(unknown_file_type FAIL ARGS render ${SCENE_DATA}/unknown-type.txt -o ${CLI_OUT}/type.pfm
+                      OUTPUT "unknown-type.txt: unknown scene file type '.txt'" FORBID ${CLI_OUT}/type.pfm)
+clpath_scene_cli_test(malformed_json FAIL ARGS render ${SCENE_DATA}/malformed.json -o ${CLI_OUT}/malformed.pfm
+                      OUTPUT "malformed.json:4:31: syntax error" FORBID ${CLI_OUT}/malformed.pfm)
+clpath_scene_cli_test(unknown_field FAIL ARGS render ${SCENE_DATA}/unknown-field.json -o ${CLI_OUT}/unknown.pfm
+                      OUTPUT "unknown-field.json: objects\\[1\\]\\.transform\\.scle: unknown field"
+                      FORBID ${CLI_OUT}/unknown.pfm)
+clpath_scene_cli_test(out_of_range FAIL ARGS render ${SCENE_DATA}/out-of-range.json -o ${CLI_OUT}/range.pfm
+                      OUTPUT "out-of-range.json: materials\\.white\\.albedo\\[1\\]: 1\\.5 is out of range \\(must be \\[0, 1\\]\\)"
+                      FORBID ${CLI_OUT}/range.pfm)
+clpath_scene_cli_test(wrong_type FAIL ARGS render ${SCENE_DATA}/wrong-type.json -o ${CLI_OUT}/type.pfm
+                      OUTPUT "wrong-type.json: camera\\.vfov: expected a number, got string" FORBID ${CLI_OUT}/type.pfm)
+clpath_scene_cli_test(missing_material FAIL ARGS render ${SCENE_DATA}/missing-material.json -o ${CLI_OUT}/mat.pfm
+                      OUTPUT "missing-material.json: objects\\[1\\]\\.material: no material named 'chrome'"
+                      FORBID ${CLI_OUT}/mat.pfm)
+clpath_scene_cli_test(missing_mesh FAIL ARGS render ${SCENE_DATA}/missing-mesh.json -o ${CLI_OUT}/mesh.pfm
+                      OUTPUT "missing-mesh.json: objects\\[0\\]\\.file: .*meshes/nowhere.obj: no such file"
+                      FORBID ${CLI_OUT}/mesh.pfm)
+clpath_scene_cli_test(obj_index_out_of_range FAIL ARGS render ${SCENE_DATA}/bad-mesh.json -o ${CLI_OUT}/index.pfm
+                      OUTPUT "bad-index.obj:6: face: vertex index 7 is out of range" FORBID ${CLI_OUT}/index.pfm)
+clpath_scene_cli_test(obj_nan FAIL ARGS render ${SCENE_DATA}/nan.obj -o ${CLI_OUT}/nan.pfm
+                      OUTPUT "nan.obj:3: vertex: 'nan' is not a finite number" FORBID ${CLI_OUT}/nan.pfm)
+clpath_scene_cli_test(obj_short_face FAIL ARGS render ${SCENE_DATA}/short-face.obj -o ${CLI_OUT}/short.pfm
+                      OUTPUT "short-face.obj:6: face has 2 corners, at least 3 are needed" FORBID ${CLI_OUT}/short.pfm)
+clpath_scene_cli_test(obj_no_faces FAIL ARGS render ${SCENE_DATA}/no-faces.obj -o ${CLI_OUT}/nofaces.pfm
+                      OUTPUT "no-faces.obj: the mesh has no faces \\(an empty scene\\)" FORBID ${CLI_OUT}/nofaces.pfm)
+clpath_scene_cli_test(empty_scene FAIL ARGS render ${SCENE_DATA}/empty.json -o ${CLI_OUT}/empty.pfm
+                      OUTPUT "empty.json: objects: the scene is empty" FORBID ${CLI_OUT}/empty.pfm)
+clpath_scene_cli_test(degenerate_dropped ARGS render ${SCENE_DATA}/degenerate.obj --spp 1 -o ${CLI_OUT}/degenerate.pfm
+                      OUTPUT "summary: .*triangles=2 .*warning: dropped 2 degenerate triangles")
+clpath_scene_cli_test(no_emitter_renders_black ARGS render ${SCENE_DATA}/no-emitter.json --spp 1 -o ${CLI_OUT}/dark.pfm
+                      OUTPUT "warning: scene 'no-emitter' has no emitter; the image will be black.*wrote .*dark.pfm")
+clpath_scene_cli_test(too_large_for_device FAIL ENV CLPATH_DEVICE_MEMORY_LIMIT=4096
+                      ARGS render ${CMAKE_SOURCE_DIR}/scenes/cornell-classic.json --spp 1 -o ${CLI_OUT}/large.pfm
+                      OUTPUT "cornell-classic.json: .* needs .*more than .*CLPATH_DEVICE_MEMORY_LIMIT"
+                      FORBID ${CLI_OUT}/large.pfm)
+clpath_scene_cli_test(unwritable_output FAIL ARGS render ${CMAKE_SOURCE_DIR}/scenes/cornell-classic.json --spp 1
+                      -o ${CLI_OUT}/missing-folder/x.png OUTPUT "missing-folder does not exist")

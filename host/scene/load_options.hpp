@@ -1,0 +1,26 @@
+#pragma once
+// How a scene is loaded: where its files come from, and how big it may get.
+#include <cstddef>
+#include <functional>
+#include <string>
+
+#include "scene/obj_mesh.hpp"
+
+namespace clpath {
+
+// The whole of a file on disk, or clpath::Error "PATH: no such file" (or
+// "is a directory", "permission denied", ...).
+std::string read_text_file(const std::string& path);
+
+struct LoadOptions {
+    // Where scene, mesh and material files come from: the disk, or for tests
+    // and fuzzers an in-memory set of files.
+    ReadFile read_file = read_text_file;
+    // Whether a file that is only referenced (an environment image) exists.
+    std::function<bool(const std::string&)> file_exists;  // empty: the disk
+    // A scene with more triangles is refused before it is built: a bound on
+    // memory for the loader, and far beyond what a device holds today.
+    std::size_t max_triangles = 50'000'000;
+};
+
+}  // namespace clpath

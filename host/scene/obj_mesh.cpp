@@ -1,0 +1,363 @@
+#include "scene/obj_mesh.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <string_view>
+
+#include <tiny_obj_loader.h>
+
+#include "util/error.hpp"
+
+namespace clpath {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+std::string_view next_token(std::string_view& s) {
+    std::size_t i = 0;
+    while (i < s.size() && is_space(s[i])) ++i;
+    std::size_t j = i;
+    while (j < s.size() && !is_space(s[j])) ++j;
+    std::string_view tok = s.substr(i, j - i);
+    s.remove_prefix(j);
+    return tok;
+}
+
+bool parse_double(std::string_view t, double& out) {
+    if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+    if (t.empty()) return false;
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), out);
+    if (r.ptr != t.data() + t.size()) return false;
+    // 1e999 is a number, just not a finite one: said so by the caller.
+    if (r.ec == std::errc::result_out_of_range) out = HUGE_VAL;
+    return r.ec == std::errc() || r.ec == std::errc::result_out_of_range;
+}
+
+bool parse_int(std::string_view t, long long& out) {
+    if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+    if (t.empty()) return false;
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), out);
+    return r.ec == std::errc() && r.ptr == t.data() + t.size();
+}
+
+// What the line-by-line check learns on the way.
+struct Scan {
+    std::size_t v = 0, vt = 0, vn = 0;
+    std::size_t lines_points = 0;
+    struct Named {
+        std::string name;
+        int line;
+    };
+    std::vector<Named> mtllibs;
+    std::vector<Named> usemtl;  // first use of each name
+    int first_mtllib_line = 0, first_usemtl_line = 0;
+};
+
+// Checks every statement tinyobjloader would read leniently: numbers must be
+// finite numbers, faces need three corners, indices must name a vertex, normal
+// or texture coordinate defined above them.
+Scan scan_obj(const std::string& text, const std::string& file) {
+    Scan s;
+    int line_no = 0;
+    std::size_t pos = 0;
+    auto fail = [&](const std::string& what) -> void { throw Error(file + ":" + std::to_string(line_no) + ": " + what); };
+    auto check_numbers = [&](std::string_view rest, const char* what, std::size_t min_count) {
+        std::size_t n = 0;
+        for (std::string_view tok = next_token(rest); !tok.empty() && tok[0] != '#'; tok = next_token(rest)) {
+            double d;
+            if (!parse_double(tok, d))
+                fail(std::string(what) + ": '" + std::string(tok) + "' is not a number");
+            if (!std::isfinite(d)) fail(std::string(what) + ": '" + std::string(tok) + "' is not a finite number");
+            if (std::fabs(d) > 3.0e38) fail(std::string(what) + ": '" + std::string(tok) + "' is too large for a float");
+            ++n;
+        }
+        if (n < min_count)
+            fail(std::string(what) + " needs at least " + std::to_string(min_count) + " numbers, got " +
+                 std::to_string(n));
+    };
+    auto check_index = [&](std::string_view tok, std::string_view part, std::size_t defined, const char* kind,
+                           const char* kinds) {
+        long long i;
+        if (!parse_int(part, i)) fail("face: '" + std::string(tok) + "' is not a vertex reference (v, v/vt, v//vn or v/vt/vn)");
+        const long long n = (long long)defined;
+        if (i == 0 || i > n || i < -n)
+            fail("face: " + std::string(kind) + " index " + std::to_string(i) + " is out of range (" +
+                 std::to_string(defined) + " " + (defined == 1 ? kind : kinds) + " defined above this line)");
+    };
+    while (pos < text.size()) {
+        ++line_no;
+        std::size_t nl = text.find('\n', pos);
+        if (nl == std::string::npos) nl = text.size();
+        std::string_view line(text.data() + pos, nl - pos);
+        pos = nl + 1;
+        if (line.find('\0') != std::string_view::npos) fail("contains a NUL byte (is this a text OBJ file?)");
+        std::string_view rest = line;
+        const std::string_view key = next_token(rest);
+        if (key.empty() || key[0] == '#') continue;
+        if (key == "v") {
+            check_numbers(rest, "vertex", 3);
+            ++s.v;
+        } else if (key == "vn") {
+            check_numbers(rest, "normal", 3);
+            ++s.vn;
+        } else if (key == "vt") {
+            check_numbers(rest, "texture coordinate", 1);
+            ++s.vt;
+        } else if (key == "f") {
+            std::size_t corners = 0;
+            for (std::string_view tok = next_token(rest); !tok.empty(); tok = next_token(rest)) {
+                if (tok[0] == '#') fail("face: a comment after a face's corners is not supported");
+                std::string_view parts[3];
+                std::size_t np = 0, start = 0;
+                for (std::size_t k = 0; k <= tok.size(); ++k)
+                    if (k == tok.size() || tok[k] == '/') {
+                        if (np == 3) fail("face: '" + std::string(tok) + "' has more than three parts");
+                        parts[np++] = tok.substr(start, k - start);
+                        start = k + 1;
+                    }
+                check_index(tok, parts[0], s.v, "vertex", "vertices");
+                if (np > 1 && !parts[1].empty()) check_index(tok, parts[1], s.vt, "texture coordinate", "texture coordinates");
+                if (np > 2 && !parts[2].empty()) check_index(tok, parts[2], s.vn, "normal", "normals");
+                if (np > 2 && parts[2].empty()) fail("face: '" + std::string(tok) + "' has an empty normal index");
+                ++corners;
+            }
+            if (corners < 3)
+                fail("face has " + std::to_string(corners) + " corner" + (corners == 1 ? "" : "s") +
+                     ", at least 3 are needed");
+        } else if (key == "mtllib") {
+            bool any = false;
+            for (std::string_view tok = next_token(rest); !tok.empty(); tok = next_token(rest)) {
+                s.mtllibs.push_back({std::string(tok), line_no});
+                any = true;
+            }
+            if (!any) fail("mtllib names no file");
+            if (!s.first_mtllib_line) s.first_mtllib_line = line_no;
+        } else if (key == "usemtl") {
+            const std::string name(next_token(rest));
+            if (name.empty()) fail("usemtl names no material");
+            bool seen = false;
+            for (const auto& u : s.usemtl) seen = seen || u.name == name;
+            if (!seen) s.usemtl.push_back({name, line_no});
+            if (!s.first_usemtl_line) s.first_usemtl_line = line_no;
+        } else if (key == "l" || key == "p") {
+            ++s.lines_points;
+        }
+    }
+    return s;
+}
+
+std::string fmt3(const tinyobj::real_t* v) {
+    std::ostringstream o;
+    o << "(" << v[0] << ", " << v[1] << ", " << v[2] << ")";
+    return o.str();
+}
+
+glm::vec3 vec(const tinyobj::real_t* v) { return {float(v[0]), float(v[1]), float(v[2])}; }
+
+// The clpath material an MTL entry stands for; docs/scene-format.md lists the rules.
+Material from_mtl(const tinyobj::material_t& m, const std::string& mtl_file) {
+    const std::string where = mtl_file + ": material '" + m.name + "': ";
+    auto check3 = [&](const char* key, const tinyobj::real_t* v, double lo, double hi) {
+        for (int i = 0; i < 3; ++i)
+            if (!(std::isfinite(v[i]) && v[i] >= lo && v[i] <= hi))
+                throw Error(where + key + " " + fmt3(v) + " is out of range (each must be in [" +
+                            std::to_string(int(lo)) + ", " + (hi > 1 ? std::string("inf") : "1") + "])");
+    };
+    auto check1 = [&](const char* key, double v, double lo, double hi, bool lo_open = false) {
+        if (!(std::isfinite(v) && (lo_open ? v > lo : v >= lo) && v <= hi))
+            throw Error(where + key + " " + std::to_string(v) + " is out of range");
+    };
+    check3("Kd", m.diffuse, 0, 1);
+    check3("Ks", m.specular, 0, 1);
+    check3("Tf", m.transmittance, 0, 1);
+    check3("Ke", m.emission, 0, 1e30);
+    check1("Ns", m.shininess, 0, 1e30);
+    check1("Ni", m.ior, 0, 1e30, true);
+    check1("d", m.dissolve, 0, 1);
+    check1("Pr", m.roughness, 0, 1);
+    check1("Pm", m.metallic, 0, 1);
+
+    // Pr if given; else a Phong exponent turned into GGX roughness by the usual
+    // Beckmann match, alpha = sqrt(2 / (Ns + 2)), and roughness = sqrt(alpha).
+    // Ns <= 1 is tinyobjloader's default (no Ns line) and Ns >= 1000 is a mirror.
+    float roughness = float(m.roughness);
+    if (roughness == 0 && m.shininess > 1 && m.shininess < 1000)
+        roughness = float(std::pow(2.0 / (m.shininess + 2.0), 0.25));
+    const glm::vec3 kd = vec(m.diffuse), ks = vec(m.specular), tf = vec(m.transmittance);
+    const bool has_ks = ks.x > 0 || ks.y > 0 || ks.z > 0;
+
+    Material out;
+    const int illum = m.illum;
+    if (m.dissolve < 1 || illum == 4 || illum == 6 || illum == 7 || illum == 9) {
+        // Ni 1 is the MTL default, and a glass of index 1 would be invisible.
+        const float ior = m.ior != 1 ? float(m.ior) : 1.5f;
+        const bool has_tf = tf.x > 0 || tf.y > 0 || tf.z > 0;
+        out = dielectric(ior, float(m.roughness), has_tf ? tf : glm::vec3(1));
+    } else if (m.metallic >= 0.5) {
+        out = conductor(kd, roughness);
+    } else if (illum == 3 || illum == 5 || illum == 8) {
+        const glm::vec3 tint = has_ks ? ks : glm::vec3(1);
+        out = roughness > 0 ? conductor(tint, roughness) : mirror(tint);
+    } else {
+        out = diffuse(kd);
+    }
+    for (int i = 0; i < 3; ++i) out.emission[i] = float(m.emission[i]);
+    return out;
+}
+
+bool has_texture(const tinyobj::material_t& m) {
+    return !(m.ambient_texname.empty() && m.diffuse_texname.empty() && m.specular_texname.empty() &&
+             m.specular_highlight_texname.empty() && m.bump_texname.empty() && m.displacement_texname.empty() &&
+             m.alpha_texname.empty() && m.reflection_texname.empty() && m.roughness_texname.empty() &&
+             m.metallic_texname.empty() && m.sheen_texname.empty() && m.emissive_texname.empty() &&
+             m.normal_texname.empty());
+}
+
+// Hands tinyobjloader the materials already read and checked, all at once, at
+// the first mtllib it meets; later mtllib lines then add nothing.
+class PreparedMaterials : public tinyobj::MaterialReader {
+public:
+    PreparedMaterials(const std::vector<tinyobj::material_t>& m, const std::map<std::string, int>& map)
+        : materials_(m), map_(map) {}
+    bool operator()(const std::string&, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* map, std::string*, std::string*) override {
+        if (!given_) {
+            *materials = materials_;
+            *map = map_;
+            given_ = true;
+        }
+        return true;
+    }
+
+private:
+    const std::vector<tinyobj::material_t>& materials_;
+    const std::map<std::string, int>& map_;
+    bool given_ = false;
+};
+
+// material_t has no constructor; LoadMtl initialises one to the MTL defaults.
+tinyobj::material_t blank_material() {
+    std::vector<tinyobj::material_t> m;
+    std::map<std::string, int> map;
+    std::istringstream in("newmtl blank\n");
+    std::string warn, err;
+    tinyobj::LoadMtl(&map, &m, &in, &warn, &err);
+    return m.at(0);
+}
+
+constexpr const char* kMaterialsTag = "__clpath_materials__";
+
+}  // namespace
+
+ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFile& read_file) {
+    const Scan scan = scan_obj(text, file);
+    ObjMesh mesh;
+
+    // Every library the file names is read and checked, whether or not
+    // tinyobjloader would stop at the first one that loads.
+    std::vector<tinyobj::material_t> tmats;
+    std::map<std::string, int> tmap;
+    const fs::path folder = fs::path(file).parent_path();
+    bool textures = false;
+    for (const auto& lib : scan.mtllibs) {
+        const std::string path = (folder / lib.name).string();
+        std::string mtl_text;
+        try {
+            mtl_text = read_file(path);
+        } catch (const Error& e) {
+            throw Error(file + ":" + std::to_string(lib.line) + ": mtllib '" + lib.name + "': " + e.what());
+        }
+        if (mtl_text.find('\0') != std::string::npos) throw Error(path + ": contains a NUL byte (is this an MTL file?)");
+        std::vector<tinyobj::material_t> got;
+        std::map<std::string, int> got_map;
+        std::istringstream in(mtl_text);
+        std::string warn, err;
+        tinyobj::LoadMtl(&got_map, &got, &in, &warn, &err);
+        if (!err.empty()) throw Error(path + ": " + err);
+        for (const auto& m : got) {
+            if (tmap.count(m.name)) continue;  // the first definition wins, as in tinyobjloader
+            ObjMaterial om;
+            om.name = m.name;
+            om.defined = true;
+            om.material = from_mtl(m, path);
+            textures = textures || has_texture(m);
+            tmap[m.name] = int(tmats.size());
+            tmats.push_back(m);
+            mesh.materials.push_back(om);
+        }
+    }
+    for (const auto& u : scan.usemtl) {
+        auto it = tmap.find(u.name);
+        if (it != tmap.end()) {
+            if (!mesh.materials[it->second].usemtl_line) mesh.materials[it->second].usemtl_line = u.line;
+            continue;
+        }
+        // A name no library defines: kept, so that the scene file may supply
+        // it; scene_file reports it if it does not.
+        ObjMaterial om;
+        om.name = u.name;
+        om.usemtl_line = u.line;
+        tinyobj::material_t tm = blank_material();
+        tm.name = u.name;
+        tmap[u.name] = int(tmats.size());
+        tmats.push_back(tm);
+        mesh.materials.push_back(om);
+    }
+    if (textures) mesh.warnings.push_back(file + ": texture maps in its materials are ignored");
+    if (scan.lines_points)
+        mesh.warnings.push_back(file + ": " + std::to_string(scan.lines_points) + " line and point elements ignored");
+
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> unused;
+    std::string warn, err;
+    PreparedMaterials reader(tmats, tmap);
+    // tinyobjloader resolves usemtl when it reads it, so the materials must be
+    // in before the first usemtl: a leading mtllib line of our own when the
+    // file uses a material before naming a library (or names none).
+    const bool need_tag = scan.first_usemtl_line && (!scan.first_mtllib_line || scan.first_usemtl_line < scan.first_mtllib_line);
+    std::istringstream in(need_tag ? std::string("mtllib ") + kMaterialsTag + "\n" + text : text);
+    const bool ok = tinyobj::LoadObj(&attrib, &shapes, &unused, &warn, &err, &in, &reader, true);
+    if (!ok || !err.empty()) throw Error(file + ": " + (err.empty() ? "tinyobjloader could not read it" : err));
+    if (attrib.vertices.size() != scan.v * 3 || attrib.normals.size() != scan.vn * 3)
+        throw Error(file + ": internal: tinyobjloader read a different number of vertices than the line check");
+
+    const std::size_t nv = attrib.vertices.size() / 3, nn = attrib.normals.size() / 3;
+    const bool with_normals = nn > 0;
+    for (const auto& shape : shapes) {
+        const auto& m = shape.mesh;
+        std::size_t first = 0;
+        for (std::size_t f = 0; f < m.num_face_vertices.size(); ++f) {
+            const std::size_t corners = m.num_face_vertices[f];
+            if (first + corners > m.indices.size()) throw Error(file + ": internal: tinyobjloader face list is short");
+            const int mat = f < m.material_ids.size() ? m.material_ids[f] : -1;
+            if (mat >= int(mesh.materials.size())) throw Error(file + ": internal: material id out of range");
+            // Triangulated already; a fan covers whatever tinyobjloader left whole.
+            for (std::size_t k = 1; k + 1 < corners; ++k) {
+                for (std::size_t c : {std::size_t(0), k, k + 1}) {
+                    const tinyobj::index_t idx = m.indices[first + c];
+                    if (idx.vertex_index < 0 || std::size_t(idx.vertex_index) >= nv)
+                        throw Error(file + ": internal: vertex index out of range after the line check");
+                    mesh.vertices.push_back(vec(&attrib.vertices[3 * std::size_t(idx.vertex_index)]));
+                    if (with_normals) {
+                        const bool has = idx.normal_index >= 0 && std::size_t(idx.normal_index) < nn;
+                        mesh.normals.push_back(has ? vec(&attrib.normals[3 * std::size_t(idx.normal_index)])
+                                                   : glm::vec3(0));
+                    }
+                }
+                mesh.triangle_material.push_back(mat < 0 ? -1 : mat);
+            }
+            first += corners;
+        }
+    }
+    return mesh;
+}
+
+ObjMesh load_obj(const std::string& file, const ReadFile& read_file) { return parse_obj(read_file(file), file, read_file); }
+
+}  // namespace clpath

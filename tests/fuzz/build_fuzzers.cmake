@@ -1,0 +1,16 @@
+# cmake -DCLANGXX=... -DSRC=tests/fuzz/project -DBIN=build/fuzz -P build_fuzzers.cmake
+if(NOT CLANGXX)
+    message("clpath-fuzz: skipped: no clang++ found (tools/install-deps.sh installs clang and libclang-rt-14-dev)")
+    return()
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${SRC} -B ${BIN} -DCMAKE_CXX_COMPILER=${CLANGXX} -DCMAKE_BUILD_TYPE=
+                RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "configuring the fuzz targets failed")
+endif()
+include(ProcessorCount)
+ProcessorCount(jobs)
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${BIN} -j${jobs} RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "building the fuzz targets failed")
+endif()

@@ -1,0 +1,36 @@
+#pragma once
+// The files a fuzzed scene may name, held in memory: the fuzzer explores the
+// parsers, not the disk (a scene naming /dev/zero would only test patience).
+#include <map>
+#include <string>
+
+#include "scene/load_options.hpp"
+#include "util/error.hpp"
+
+namespace clpath::fuzz {
+
+inline const std::map<std::string, std::string>& files() {
+    static const std::map<std::string, std::string> f = {
+        {"fuzz/mesh.obj",
+         "mtllib mesh.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nusemtl red\nf 1//1 2//1 3//1 4//1\n"
+         "usemtl other\nf 1 3 2\n"},
+        {"fuzz/mesh.mtl", "newmtl red\nKd 0.8 0.1 0.1\nnewmtl lamp\nKe 5 5 5\n"},
+        {"fuzz/sky.exr", ""},
+    };
+    return f;
+}
+
+inline LoadOptions options() {
+    LoadOptions o;
+    o.read_file = [](const std::string& path) {
+        auto it = files().find(path);
+        if (it == files().end()) throw Error(path + ": no such file");
+        return it->second;
+    };
+    o.file_exists = [](const std::string& path) { return files().count(path) > 0; };
+    // Enough for every shape kind, small enough that each input runs in milliseconds.
+    o.max_triangles = 20000;
+    return o;
+}
+
+}  // namespace clpath::fuzz

@@ -1,0 +1,99 @@
+// The viewer's small pure pieces: BVH box levels, frame pacing, letterboxing.
+#include <gtest/gtest.h>
+
+#include "bvh/bvh.hpp"
+#include "viewer/bvh_boxes.hpp"
+#include "viewer/frame_pacer.hpp"
+#include "viewer/letterbox.hpp"
+
+using namespace clpath;
+using namespace clpath::viewer;
+
+namespace {
+
+void set_child(BvhNode& n, int i, glm::vec3 lo, glm::vec3 hi, int child, unsigned count) {
+    float* l = i ? n.lo1 : n.lo0;
+    float* h = i ? n.hi1 : n.hi0;
+    for (int a = 0; a < 3; ++a) {
+        l[a] = lo[a];
+        h[a] = hi[a];
+    }
+    (i ? n.child1 : n.child0) = child;
+    (i ? n.count1 : n.count0) = count;
+}
+
+// root -> (node 1, leaf); node 1 -> (leaf, leaf)
+std::vector<BvhNode> three_level_bvh() {
+    std::vector<BvhNode> nodes(2);
+    set_child(nodes[0], 0, {0, 0, 0}, {1, 1, 1}, 1, 0);
+    set_child(nodes[0], 1, {2, 0, 0}, {3, 1, 1}, ~0, 2);
+    set_child(nodes[1], 0, {0, 0, 0}, {0.5f, 1, 1}, ~2, 1);
+    set_child(nodes[1], 1, {0.5f, 0, 0}, {1, 1, 1}, ~3, 1);
+    return nodes;
+}
+
+}  // namespace
+
+TEST(ViewerBvhBoxes, LevelsFollowTheTree) {
+    const auto nodes = three_level_bvh();
+    EXPECT_EQ(bvh_levels(nodes), 2);
+    EXPECT_EQ(bvh_boxes(nodes, 0).size(), 0u);
+    const auto one = bvh_boxes(nodes, 1);
+    ASSERT_EQ(one.size(), 2u);
+    for (const auto& b : one) EXPECT_EQ(b.level, 1);
+    const auto two = bvh_boxes(nodes, 5);
+    ASSERT_EQ(two.size(), 4u);
+    int level2 = 0;
+    for (const auto& b : two) level2 += b.level == 2;
+    EXPECT_EQ(level2, 2);
+}
+
+TEST(ViewerBvhBoxes, EmptySlotOfALeafRootIsSkipped) {
+    std::vector<BvhNode> nodes(1);
+    set_child(nodes[0], 0, {0, 0, 0}, {1, 1, 1}, ~0, 3);
+    set_child(nodes[0], 1, {0, 0, 0}, {0, 0, 0}, ~0, 0);
+    EXPECT_EQ(bvh_boxes(nodes, 3).size(), 1u);
+}
+
+TEST(ViewerBvhBoxes, BoxEdgesAreTheTwelveAxisAlignedEdges) {
+    const auto v = box_edges({{0, 0, 0}, {1, 2, 3}, 1});
+    ASSERT_EQ(v.size(), 24u);
+    glm::vec3 total(0);
+    for (std::size_t i = 0; i < v.size(); i += 2) {
+        const glm::vec3 d = glm::abs(v[i + 1] - v[i]);
+        EXPECT_EQ(int(d.x > 0) + int(d.y > 0) + int(d.z > 0), 1);  // along one axis
+        total += d;
+    }
+    EXPECT_EQ(total, glm::vec3(4, 8, 12));  // four edges per axis
+}
+
+TEST(ViewerBvhBoxes, BoxesOfARealBvhContainTheirChildren) {
+    std::vector<glm::vec3> tris;
+    for (int i = 0; i < 64; ++i) {
+        const glm::vec3 o(float(i % 4), float(i / 4 % 4), float(i / 16));
+        tris.insert(tris.end(), {o, o + glm::vec3(0.5f, 0, 0), o + glm::vec3(0, 0.5f, 0.2f)});
+    }
+    const Bvh bvh = build_bvh(tris, BvhBuildOptions{});
+    const int levels = bvh_levels(bvh.nodes);
+    EXPECT_GE(levels, 2);
+    EXPECT_EQ(bvh_boxes(bvh.nodes, levels).size(), bvh_boxes(bvh.nodes, 1 << 20).size());
+    EXPECT_LT(bvh_boxes(bvh.nodes, 1).size(), bvh_boxes(bvh.nodes, 2).size());
+}
+
+TEST(ViewerFramePacer, FillsTheBudgetWithWholeSamples) {
+    FramePacer p(0.031);
+    EXPECT_EQ(p.next_samples(), 1u);  // nothing measured
+    p.record(2, 0.010);               // 5 ms a sample: 6.2 fit
+    EXPECT_EQ(p.next_samples(), 6u);
+    p.forget();
+    EXPECT_EQ(p.next_samples(), 1u);
+    p.record(1, 0.5);  // slower than the budget: still one sample
+    EXPECT_EQ(p.next_samples(), 1u);
+}
+
+TEST(ViewerLetterbox, KeepsAspectAndCentres) {
+    EXPECT_EQ(letterbox({64, 48}, {64, 48}), glm::ivec4(0, 0, 64, 48));
+    EXPECT_EQ(letterbox({64, 48}, {128, 48}), glm::ivec4(32, 0, 64, 48));
+    EXPECT_EQ(letterbox({64, 48}, {128, 192}), glm::ivec4(0, 48, 128, 96));
+    EXPECT_EQ(letterbox({64, 48}, {0, 10}), glm::ivec4(0));
+}

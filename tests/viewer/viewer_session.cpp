@@ -1,0 +1,241 @@
+// The viewer as a user runs it: the clpath program under xvfb-run (Xvfb,
+// Mesa's llvmpipe), real kernels on the test device, scripted input. Each
+// test reads the viewer's state log and the images it writes.
+// Built and registered by viewer_tests.cmake, which passes CLPATH_EXE,
+// XVFB_RUN and VIEWER_TEST_OUT.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "image/image.hpp"
+#include "viewer/block_agreement.hpp"
+#include "viewer/process.hpp"
+
+using namespace clpath;
+using namespace clpath::test;
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+// Small images: these run on two CPU cores.
+constexpr int kWidth = 64, kHeight = 48;
+
+// A fresh folder per test, named after it.
+std::string test_dir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    const fs::path dir = fs::path(VIEWER_TEST_OUT) / info->name();
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir.string();
+}
+
+struct Session {
+    ProcessResult result;
+    std::vector<json> log;
+    std::vector<json> frames() const {
+        std::vector<json> f;
+        for (const auto& l : log)
+            if (!l.contains("event")) f.push_back(l);
+        return f;
+    }
+};
+
+// Runs 'clpath view' under Xvfb with a script. --frames bounds a session that
+// would otherwise wait forever (and fails it, as the script did not finish).
+Session view(const std::string& dir, const std::string& script, const std::string& extra = "") {
+    write_text(dir + "/script.txt", script);
+    const std::string cmd = std::string(XVFB_RUN) + " -a -s '-screen 0 640x480x24' " + CLPATH_EXE +
+                            " view --width " + std::to_string(kWidth) + " --height " + std::to_string(kHeight) +
+                            " --frames 3000 --script " + dir + "/script.txt --state-log " + dir +
+                            "/state.jsonl --screenshot-dir " + dir + " " + extra;
+    Session s;
+    s.result = run_shell(cmd);
+    s.log = read_json_lines(dir + "/state.jsonl");
+    return s;
+}
+
+Image mirrored(const Image& img) {
+    Image m = img;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                m.rgb[(std::size_t(y) * img.width + x) * 3 + c] = img.at(img.width - 1 - x, y, c);
+    return m;
+}
+
+float srgb_encode(float x) {
+    x = std::clamp(x, 0.0f, 1.0f);
+    return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
+}
+
+std::size_t differing_pixels(const Image& a, const Image& b) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < a.rgb.size(); i += 3)
+        n += a.rgb[i] != b.rgb[i] || a.rgb[i + 1] != b.rgb[i + 1] || a.rgb[i + 2] != b.rgb[i + 2];
+    return n;
+}
+
+}  // namespace
+
+TEST(Session, RefinesEveryFrameAndACameraMoveRestartsTheMean) {
+    const std::string dir = test_dir();
+    const Session s = view(dir,
+                           "wait-spp 3\n"
+                           "hold w 2\n"  // forward for two frames
+                           "wait 3\n"
+                           "drag 20 -10\n"  // look right and up
+                           "wait 3\n"
+                           "camera\n"
+                           "quit\n");
+    ASSERT_EQ(s.result.exit_code, 0) << s.result.output;
+    const auto f = s.frames();
+    ASSERT_GE(f.size(), 8u) << s.result.output;
+    int restarts = 0, refinements = 0;
+    for (std::size_t i = 1; i < f.size(); ++i) {
+        const bool moved = f[i]["camera"] != f[i - 1]["camera"];
+        const auto spp = f[i]["spp"].get<std::uint64_t>(), added = f[i]["added_spp"].get<std::uint64_t>();
+        ASSERT_GE(added, 1u) << "frame " << i << " added no samples";
+        if (moved) {
+            // The mean restarted: all its samples are this frame's.
+            EXPECT_EQ(spp, added) << "frame " << i << ": the camera moved but the mean kept older samples";
+            ++restarts;
+        } else {
+            EXPECT_EQ(spp, f[i - 1]["spp"].get<std::uint64_t>() + added) << "frame " << i << " did not refine";
+            ++refinements;
+        }
+    }
+    EXPECT_EQ(restarts, 3) << "two frames of W and one drag";
+    EXPECT_GE(refinements, 5);
+    // W moved the eye forward (+z in the Cornell box), the drag turned the view.
+    const auto& first = f.front()["camera"], & last = f.back()["camera"];
+    EXPECT_GT(last["eye"][2].get<double>(), first["eye"][2].get<double>());
+    EXPECT_NE(last["target"], first["target"]);
+    // The printed camera is the scene-file snippet of the camera in use.
+    const auto snippet_at = s.result.output.find("{\"camera\": ");
+    ASSERT_NE(snippet_at, std::string::npos) << s.result.output;
+    const json snippet = json::parse(s.result.output.substr(snippet_at, s.result.output.find('\n', snippet_at) - snippet_at));
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(snippet["camera"]["eye"][i].get<float>(), last["eye"][i].get<float>());
+    EXPECT_EQ(snippet["camera"]["resolution"], json::array({kWidth, kHeight}));
+}
+
+TEST(Session, KeysSwitchTheViewAndExposure) {
+    const std::string dir = test_dir();
+    const Session s = view(dir,
+                           "wait-spp 4\nscreenshot path-a\n"
+                           "key 4\nwait 1\nwait-spp 4\nscreenshot normals\n"
+                           "key 1\nwait 1\nwait-spp 4\nscreenshot path-b\n"
+                           "key =\nkey =\nscreenshot path-brighter\n"
+                           "quit\n",
+                           "--max-spp 4");
+    ASSERT_EQ(s.result.exit_code, 0) << s.result.output;
+    // The state log follows the keys: path, then normals, then path again, each a restart.
+    std::vector<std::string> views;
+    for (const auto& f : s.frames()) {
+        const std::string v = f["integrator"];
+        if (views.empty() || views.back() != v) {
+            views.push_back(v);
+            EXPECT_EQ(f["spp"], f["added_spp"]) << "switching to " << v << " did not restart the mean";
+        }
+        EXPECT_EQ(f["error"], "") << "the " << v << " view failed";
+    }
+    EXPECT_EQ(views, (std::vector<std::string>{"path", "normals", "path"}));
+    const float exposure = s.frames().back()["exposure"];
+    EXPECT_NEAR(exposure, 2.0f, 1e-6f) << "two half stops up";
+
+    const Image a = read_image(dir + "/path-a.exr"), n = read_image(dir + "/normals.exr"),
+                b = read_image(dir + "/path-b.exr"), bright = read_image(dir + "/path-brighter.exr");
+    // The renderer is deterministic per seed and sample: the same view at the
+    // same spp is the same image, and another view is another image.
+    EXPECT_EQ(differing_pixels(a, b), 0u) << "path view not restored";
+    EXPECT_GT(differing_pixels(a, n), std::size_t(kWidth * kHeight / 2)) << "key 4 did not change the image";
+    // Exposure scales what is shown (the PNG), not the saved mean (the EXR).
+    EXPECT_EQ(differing_pixels(b, bright), 0u);
+    // The PNGs are the EXR's mean times the exposure, sRGB-encoded to 8 bits.
+    for (const auto& [png_file, scale] : {std::pair{"/path-b.png", 1.0f}, std::pair{"/path-brighter.png", exposure}}) {
+        const Image png = read_image(dir + png_file);
+        ASSERT_EQ(png.rgb.size(), b.rgb.size());
+        int worst = 0;
+        for (std::size_t i = 0; i < png.rgb.size(); ++i) {
+            const int expect = int(std::lround(255 * srgb_encode(scale * b.rgb[i])));
+            worst = std::max(worst, std::abs(int(std::lround(255 * srgb_encode(png.rgb[i]))) - expect));
+        }
+        EXPECT_LE(worst, 1) << png_file << ": 8-bit values differ from the exposed mean by more than rounding";
+    }
+}
+
+TEST(Session, BvhOverlayAndHudShowInTheWindow) {
+    const std::string dir = test_dir();
+    const Session s = view(dir,
+                           "wait-spp 2\nwait 1\ncapture " + dir + "/plain.png\n"
+                           "key b\nwait 1\ncapture " + dir + "/boxes.png\n"
+                           "key ]\nkey ]\nwait 1\ncapture " + dir + "/deeper.png\n"
+                           "key b\nwait 1\ncapture " + dir + "/plain-again.png\n"
+                           "key h\nwait 1\ncapture " + dir + "/hud.png\n"
+                           "quit\n",
+                           "--max-spp 2 --hide-hud");
+    ASSERT_EQ(s.result.exit_code, 0) << s.result.output;
+    const Image plain = read_image(dir + "/plain.png"), boxes = read_image(dir + "/boxes.png"),
+                deeper = read_image(dir + "/deeper.png"), again = read_image(dir + "/plain-again.png"),
+                hud = read_image(dir + "/hud.png");
+    ASSERT_EQ(plain.width, kWidth);
+    ASSERT_EQ(plain.height, kHeight);
+    // With the image converged (--max-spp) the window changes only with the overlay.
+    EXPECT_EQ(differing_pixels(plain, again), 0u) << "the overlay left something behind";
+    const std::size_t box_pixels = differing_pixels(plain, boxes), deeper_pixels = differing_pixels(plain, deeper);
+    EXPECT_GT(box_pixels, 0u) << "key B drew no boxes";
+    EXPECT_GT(deeper_pixels, box_pixels) << "deeper levels add boxes";
+    EXPECT_GT(differing_pixels(plain, hud), 0u) << "key H showed no heads-up display";
+    std::vector<int> depths;
+    for (const auto& f : s.frames())
+        if (depths.empty() || depths.back() != f["bvh_depth"].get<int>()) depths.push_back(f["bvh_depth"]);
+    EXPECT_EQ(depths, (std::vector<int>{0, 3, 5, 0}));
+}
+
+TEST(Session, ScreenshotAgreesWithRenderOfTheSameCamera) {
+    const std::string dir = test_dir();
+    constexpr unsigned kViewSpp = 32, kRefSpp = 8, kRefs = 16;
+    // Fly away and come back (R): the screenshot is of the scene's camera.
+    const Session s = view(dir,
+                           "wait-spp 2\nhold w 2\ndrag 15 5\nwait 1\nkey r\nwait 1\n"
+                           "wait-spp " + std::to_string(kViewSpp) + "\nscreenshot\nquit\n",
+                           "--max-spp " + std::to_string(kViewSpp));
+    ASSERT_EQ(s.result.exit_code, 0) << s.result.output;
+    const Image view_image = read_image(dir + "/cornell-" + std::to_string(kViewSpp) + "spp.exr");
+    ASSERT_EQ(view_image.width, kWidth);
+
+    // Independent renders: seeds 1..K, the viewer's is 0.
+    std::vector<Image> refs;
+    for (unsigned k = 1; k <= kRefs; ++k) {
+        const std::string out = dir + "/ref-" + std::to_string(k) + ".pfm";
+        const ProcessResult r = run_shell(std::string(CLPATH_EXE) + " render -q --spp " + std::to_string(kRefSpp) +
+                                          " --seed " + std::to_string(k) + " --width " + std::to_string(kWidth) +
+                                          " --height " + std::to_string(kHeight) + " -o " + out);
+        ASSERT_EQ(r.exit_code, 0) << r.output;
+        refs.push_back(read_image(out));
+    }
+    const double alpha = 1e-4;
+    const BlockAgreement agree = compare_blocks(view_image, kViewSpp, refs, kRefSpp, alpha);
+    EXPECT_TRUE(agree.agrees) << agree.report;
+    std::printf("viewer vs render: %s\n", agree.report.c_str());
+    // The test can fail: the same image mirrored (red and green walls swapped) must not pass.
+    const BlockAgreement wrong = compare_blocks(mirrored(view_image), kViewSpp, refs, kRefSpp, alpha);
+    EXPECT_FALSE(wrong.agrees) << "a mirrored image passed: " << wrong.report;
+    std::printf("mirrored vs render: %s\n", wrong.report.c_str());
+}
+
+TEST(Session, CtrlCExitsCleanly) {
+    const std::string dir = test_dir();
+    const std::string log = dir + "/state.jsonl";
+    // The viewer runs in the background under Xvfb; once it has drawn a frame, SIGINT.
+    const std::string inner = std::string(CLPATH_EXE) + " view --width 64 --height 48 --state-log " + log +
+                              " --screenshot-dir " + dir + " & pid=$!; i=0; while [ ! -s " + log +
+                              " ] && [ $i -lt 600 ]; do sleep 0.1; i=$((i+1)); done; sleep 0.5; kill -INT $pid; "
+                              "wait $pid; echo exit=$?";
+    const ProcessResult r = run_shell(std::string(XVFB_RUN) + " -a sh -c '" + inner + "'");
+    EXPECT_NE(r.output.find("exit=0"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("(interrupted)"), std::string::npos) << r.output;
+}
