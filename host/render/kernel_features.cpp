@@ -1,9 +1,16 @@
 #include "render/kernel_features.hpp"
 
+#include <cctype>
+
 namespace clpath {
 namespace {
-bool emits(const Material& m) { return m.emission[0] > 0 || m.emission[1] > 0 || m.emission[2] > 0; }
-const char* const kMaterialNames[CLP_MAT_KIND_COUNT] = {"DIFFUSE", "MIRROR", "CONDUCTOR", "DIELECTRIC"};
+// Indexed by CLP_MAT_*; upper-cased in the CLP_HAS_MAT_* switches.
+const char* const kMaterialNames[CLP_MAT_KIND_COUNT] = {"diffuse", "mirror", "conductor", "dielectric"};
+
+std::string upper(std::string s) {
+    for (char& c : s) c = char(std::toupper(static_cast<unsigned char>(c)));
+    return s;
+}
 }  // namespace
 
 SceneFeatures scene_features(const Scene& scene) {
@@ -48,7 +55,7 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
 std::string build_options(const KernelFeatures& f) {
     std::string o = "-cl-std=CL1.2";
     for (std::uint32_t k = 0; k < CLP_MAT_KIND_COUNT; ++k)
-        if (f.materials[k]) o += std::string(" -DCLP_HAS_MAT_") + kMaterialNames[k];
+        if (f.materials[k]) o += " -DCLP_HAS_MAT_" + upper(kMaterialNames[k]);
     if (f.emission) o += " -DCLP_HAS_EMISSION";
     if (f.triangle_lights) o += " -DCLP_HAS_TRIANGLE_LIGHTS";
     if (f.delta_lights) o += " -DCLP_HAS_DELTA_LIGHTS";
@@ -65,8 +72,7 @@ std::string describe(const KernelFeatures& f) {
     auto add = [&](bool on, std::string name) {
         if (on) s += (s.empty() ? "" : " ") + name;
     };
-    const char* const names[CLP_MAT_KIND_COUNT] = {"diffuse", "mirror", "conductor", "dielectric"};
-    for (std::uint32_t k = 0; k < CLP_MAT_KIND_COUNT; ++k) add(f.materials[k], names[k]);
+    for (std::uint32_t k = 0; k < CLP_MAT_KIND_COUNT; ++k) add(f.materials[k], kMaterialNames[k]);
     add(f.emission, "emission");
     add(f.triangle_lights, "triangle-lights");
     add(f.delta_lights, "delta-lights");

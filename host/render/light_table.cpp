@@ -5,15 +5,6 @@
 #include "util/error.hpp"
 
 namespace clpath {
-namespace {
-void store3(float* d, glm::vec3 v) {
-    d[0] = v.x;
-    d[1] = v.y;
-    d[2] = v.z;
-}
-glm::vec3 vec3_of(const float* p) { return {p[0], p[1], p[2]}; }
-}  // namespace
-
 double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 std::vector<AliasEntry> build_alias_table(const std::vector<double>& w) {
@@ -56,8 +47,8 @@ LightTable build_light_table(const Scene& scene, const KernelFeatures& f, const 
     if (f.triangle_lights) {
         for (std::size_t i = 0; i < scene.triangle_count(); ++i) {
             const Material& m = scene.materials[scene.triangle_material[i]];
-            const glm::vec3 le = vec3_of(m.emission);
-            if (!(le.x > 0 || le.y > 0 || le.z > 0)) continue;
+            if (!emits(m)) continue;
+            const glm::vec3 le = load3(m.emission);
             const glm::vec3 a = scene.vertices[3 * i], b = scene.vertices[3 * i + 1], c = scene.vertices[3 * i + 2];
             const double area = 0.5 * glm::length(glm::cross(glm::dvec3(b - a), glm::dvec3(c - a)));
             if (!(area > 0)) continue;  // cannot be hit or sampled

@@ -5,14 +5,6 @@
 #include "util/error.hpp"
 
 namespace clpath {
-namespace {
-void store3(float* dst, glm::vec3 v) {
-    dst[0] = v.x;
-    dst[1] = v.y;
-    dst[2] = v.z;
-}
-}  // namespace
-
 CameraData camera_data(const Camera& c) {
     const glm::vec3 view = c.target - c.eye;
     if (!(glm::length(view) > 0.0f) || !std::isfinite(glm::length(view)))
@@ -58,8 +50,7 @@ bool Scene::has_emitter() const {
     for (auto m : triangle_material)
         if (m < used.size()) used[m] = true;
     for (std::size_t i = 0; i < materials.size(); ++i)
-        if (used[i] && (materials[i].emission[0] > 0 || materials[i].emission[1] > 0 || materials[i].emission[2] > 0))
-            return true;
+        if (used[i] && emits(materials[i])) return true;
     return false;
 }
 

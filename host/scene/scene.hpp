@@ -82,6 +82,17 @@ struct Scene {
     bool has_emitter() const;
 };
 
+// The float[3] fields of the shared structs, to and from glm.
+inline void store3(float* dst, glm::vec3 v) {
+    dst[0] = v.x;
+    dst[1] = v.y;
+    dst[2] = v.z;
+}
+inline glm::vec3 load3(const float* p) { return {p[0], p[1], p[2]}; }
+
+// Some channel of the material's emission is positive.
+inline bool emits(const Material& m) { return m.emission[0] > 0 || m.emission[1] > 0 || m.emission[2] > 0; }
+
 Material diffuse(glm::vec3 albedo);
 Material mirror(glm::vec3 tint = glm::vec3(1));
 Material conductor(glm::vec3 f0, float roughness);

@@ -39,8 +39,6 @@ std::string resolve(const std::string& scene_file, const std::string& path) {
 
 std::string stem(const std::string& file) { return fs::path(file).stem().string(); }
 
-bool emits(const Material& m) { return m.emission[0] > 0 || m.emission[1] > 0 || m.emission[2] > 0; }
-
 void read_camera(Object o, Camera& cam) {
     cam.eye = o.require("eye").vec3();
     cam.target = o.require("target").vec3();

@@ -5,9 +5,19 @@
 #include <string>
 
 #include "scene/load_options.hpp"
+#include "scene/scene.hpp"
 #include "util/error.hpp"
 
 namespace clpath::fuzz {
+
+// What the renderer relies on of any scene a loader returns; a breach is a finding.
+inline void check_scene(const Scene& s) {
+    if (s.vertices.size() != s.triangle_count() * 3) __builtin_trap();
+    if (!s.normals.empty() && s.normals.size() != s.vertices.size()) __builtin_trap();
+    for (auto m : s.triangle_material)
+        if (m >= s.materials.size()) __builtin_trap();
+    (void)camera_data(s.camera);  // throws clpath::Error for a bad camera, never crashes
+}
 
 inline const std::map<std::string, std::string>& files() {
     static const std::map<std::string, std::string> f = {

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
+#include "fuzz_files.hpp"
 #include "scene/scene_file.hpp"
-#include "util/error.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string input(reinterpret_cast<const char*>(data), size);
@@ -17,12 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     o.read_file = [&](const std::string& path) { return path == "fuzz/mesh.obj" ? obj : mtl; };
     o.max_triangles = 100000;
     try {
-        clpath::Scene s = clpath::obj_scene("fuzz/mesh.obj", o);
-        if (s.vertices.size() != s.triangle_count() * 3) __builtin_trap();
-        if (!s.normals.empty() && s.normals.size() != s.vertices.size()) __builtin_trap();
-        for (auto m : s.triangle_material)
-            if (m >= s.materials.size()) __builtin_trap();
-        (void)clpath::camera_data(s.camera);
+        clpath::fuzz::check_scene(clpath::obj_scene("fuzz/mesh.obj", o));
     } catch (const clpath::Error&) {
     }
     return 0;
