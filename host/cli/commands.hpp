@@ -13,5 +13,11 @@ Command add_render_command(CLI::App& app);
 Command add_devices_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
 Command add_view_command(CLI::App& app);
+Command add_bench_command(CLI::App& app);
+
+// The subcommands of `clpath bench`.
+Command add_bench_scaling_command(CLI::App& bench);
+Command add_bench_rays_command(CLI::App& bench);
+Command add_bench_convergence_command(CLI::App& bench);
 
 }  // namespace clpath
