@@ -122,6 +122,7 @@ inline float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
     constant const FrameParams* fp = sc->fp;
     float3 L = (float3)(0.0f), beta = (float3)(1.0f);
     float prev_pdf = 0.0f;
+    float3 prev_p = ray.o; /* the vertex the ray left: light pdfs for MIS are taken from there */
     int prev_delta = 1; /* a camera ray: what it sees directly is never light-sampled */
     for (uint depth = 0;; ++depth) {
         Hit h = trace_closest(sc, ray, rays, 0);
@@ -143,7 +144,7 @@ inline float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
             float w = 1.0f;
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH && defined(CLP_HAS_TRIANGLE_LIGHTS)
             if (!prev_delta && s.tv->light != CLP_NO_LIGHT)
-                w = power_heuristic(prev_pdf, triangle_light_pdf(sc->lights, sc->alias, s.tv->light, ray.d, h.t));
+                w = power_heuristic(prev_pdf, triangle_light_pdf(sc->lights, sc->alias, s.tv->light, prev_p, ray.d, h.t));
 #endif
             L += beta * w * Le;
         }
@@ -160,6 +161,7 @@ inline float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
         beta *= bs.weight;
         prev_pdf = bs.pdf;
         prev_delta = bs.delta;
+        prev_p = s.p;
         ray.o = offset_ray_origin(s.p, s.err, s.ng, bs.wi);
         ray.d = bs.wi;
     }

@@ -52,3 +52,35 @@ inline float3 to_world(float3 v, float3 n) {
     make_frame(n, &t, &b);
     return v.x * t + v.y * b + v.z * n;
 }
+
+/* Solid angle of the spherical triangle of unit vectors a, b, c, by Van
+ * Oosterom & Strackee (1983): tan(omega / 2) = |a.(b x c)| / (1 + a.b + b.c + c.a).
+ * Unlike the angle-excess formula it does not cancel for small triangles. */
+inline float spherical_triangle_area(float3 a, float3 b, float3 c) {
+    return 2.0f * atan2(fabs(dot(a, cross(b, c))), 1.0f + dot(a, b) + dot(b, c) + dot(c, a));
+}
+
+/* Unit vector v minus its component along unit vector n, normalised; zero
+ * where v is parallel to n (then nothing is added to the component along n). */
+inline float3 orthogonal_part(float3 v, float3 n) {
+    float3 w = v - dot(v, n) * n;
+    float l = length(w);
+    return l > 0.0f ? w / l : (float3)(0.0f);
+}
+
+/* A direction uniform in solid angle over the spherical triangle (a, b, c) of
+ * area `area` (unit vectors; area from spherical_triangle_area): Arvo 1995,
+ * "Stratified Sampling of Spherical Triangles". u1 picks the sub-triangle
+ * (a, b, c') of area u1 * area, u2 the point along the arc from b to c'. */
+inline float3 sample_spherical_triangle(float3 a, float3 b, float3 c, float area, float u1, float u2) {
+    /* alpha: the triangle's angle at a, between the great circles ab and ac. */
+    float cos_alpha = clamp(dot(normalize(cross(a, b)), normalize(cross(a, c))), -1.0f, 1.0f);
+    float sin_alpha = sqrt(fmax(0.0f, 1.0f - cos_alpha * cos_alpha));
+    float a_hat = u1 * area;
+    float s = sin(a_hat - acos(cos_alpha)), t = cos(a_hat - acos(cos_alpha));
+    float u = t - cos_alpha, v = s + sin_alpha * dot(a, b);
+    float q = clamp(((v * t - u * s) * cos_alpha - v) / ((v * s + u * t) * sin_alpha), -1.0f, 1.0f);
+    float3 c_hat = q * a + sqrt(fmax(0.0f, 1.0f - q * q)) * orthogonal_part(c, a);
+    float z = 1.0f - u2 * (1.0f - dot(c_hat, b));
+    return z * b + sqrt(fmax(0.0f, 1.0f - z * z)) * orthogonal_part(c_hat, b);
+}

@@ -125,3 +125,24 @@ kernel void probe_bsdf_eval(global const Material* m, uint count, global const f
     float3 f = material_eval(m, n, n, wo[i].xyz, wi[i].xyz, &pdf);
     out[i] = (float4)(f, pdf);
 }
+
+/* Points sampled on triangle light l as seen from p: out[i] = (q, pdf) with the
+ * solid-angle pdf without the pick, or pdf = -1 where the sample gave nothing.
+ * pdf_out[i]: the pdf that MIS evaluates for the same direction and distance. */
+kernel void probe_triangle_light(global const Light* l, float px, float py, float pz, uint count, uint seed,
+                                 global float4* out, global float* pdf_out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    Rng r = rng_seed(i, 2, seed);
+    float u1 = rng_next(&r), u2 = rng_next(&r);
+    float3 p = (float3)(px, py, pz);
+    LightSample s;
+    if (!sample_triangle_light(l, p, u1, u2, &s)) {
+        out[i] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
+        pdf_out[i] = -1.0f;
+        return;
+    }
+    float3 q = s.to; /* the shadow-ray end: q moved off the light by its error bound */
+    out[i] = (float4)(q, s.pdf);
+    pdf_out[i] = triangle_sample_pdf(l, p, s.wi, length(q - p));
+}
