@@ -36,7 +36,7 @@ inline int material_is_delta(global const Material* m) {
     case CLP_MAT_CONDUCTOR: return ggx_alpha(m) < CLP_SMOOTH_ALPHA;
 #endif
 #ifdef CLP_HAS_MAT_DIELECTRIC
-    case CLP_MAT_DIELECTRIC: return 1;
+    case CLP_MAT_DIELECTRIC: return ggx_alpha(m) < CLP_SMOOTH_ALPHA;
 #endif
     default: return 0;
     }
@@ -120,6 +120,63 @@ inline float ggx_reflection_pdf(float3 wo, float3 h, float alpha) {
     return ggx_g1(wo, alpha) * ggx_d(h, alpha) / (4.0f * wo.z);
 }
 
+/* ---- rough dielectric ---------------------------------------------------- */
+/* Walter et al. 2007, "Microfacet Models for Refraction through Rough
+ * Surfaces": reflection through the half vector, transmission through the
+ * generalised half vector h ~ wo + eta wi, both from visible normals. Local
+ * frame with wo above (wo.z > 0): the caller mirrors an inside wo below the
+ * surface to above and passes eta = n_transmitted / n_incident for that side.
+ * Returns f |cos theta_i| and the pdf of sampling wi (Fresnel picks between
+ * the lobes); transmitted radiance is scaled by 1/eta^2 as for smooth glass. */
+inline float rough_dielectric_eval(float3 wo, float3 wi, float alpha, float eta, float* pdf) {
+    *pdf = 0.0f;
+    if (wo.z <= 0.0f || wi.z == 0.0f) return 0.0f;
+    int reflect = wi.z > 0.0f;
+    float3 h = reflect ? wo + wi : wo + eta * wi;
+    if (!(dot(h, h) > 0.0f)) return 0.0f;
+    h = normalize(h);
+    if (h.z < 0.0f) h = -h;
+    float wo_h = dot(wo, h), wi_h = dot(wi, h);
+    /* Back-facing microfacets: wo must see h, and wi must be on h's side for
+     * reflection and beyond it for transmission. */
+    if (wo_h <= 0.0f || (reflect ? wi_h <= 0.0f : wi_h >= 0.0f)) return 0.0f;
+    float F = fresnel_dielectric(wo_h, eta);
+    float d = ggx_d(h, alpha), g1 = ggx_g1(wo, alpha), g2 = ggx_g2(wo, wi, alpha);
+    float visible = g1 * d / wo.z; /* D_wo(h) / (wo.h) */
+    if (reflect) {
+        *pdf = F * visible / 4.0f;
+        return F * d * g2 / (4.0f * wo.z);
+    }
+    float denom = wo_h + eta * wi_h;
+    float jacobian = eta * eta * fabs(wi_h) / (denom * denom); /* dh / dwi */
+    *pdf = (1.0f - F) * visible * wo_h * jacobian;
+    return (1.0f - F) * d * g2 * fabs(wi_h) * wo_h / (wo.z * denom * denom);
+}
+
+/* Samples wi for wo.z > 0 as rough_dielectric_eval describes; *weight is
+ * f |cos| / pdf without the tint. Returns 0 when the sample fails. */
+inline int rough_dielectric_sample(float3 wo, float alpha, float eta, float u1, float u2, float u3, float3* wi,
+                                   float* pdf, float* weight) {
+    float3 h = ggx_sample_visible_normal(wo, alpha, u1, u2);
+    float wo_h = dot(wo, h);
+    if (wo_h <= 0.0f) return 0;
+    float F = fresnel_dielectric(wo_h, eta);
+    if (u3 < F) {
+        *wi = 2.0f * wo_h * h - wo;
+        if (wi->z <= 0.0f) return 0;
+    } else {
+        /* Snell's law about h (F < 1 here, so no total internal reflection). */
+        float sin2_t = (1.0f - wo_h * wo_h) / (eta * eta);
+        float cos_t = sqrt(fmax(0.0f, 1.0f - sin2_t));
+        *wi = normalize(-wo / eta + (wo_h / eta - cos_t) * h);
+        if (wi->z >= 0.0f) return 0;
+    }
+    float f = rough_dielectric_eval(wo, *wi, alpha, eta, pdf);
+    if (!(*pdf > 0.0f)) return 0;
+    *weight = f / *pdf;
+    return 1;
+}
+
 /* ---- the BSDF interface ------------------------------------------------- */
 
 typedef struct {
@@ -154,6 +211,19 @@ inline float3 material_eval(global const Material* m, float3 ng, float3 ns, floa
     *pdf = 0.0f;
     Frame f = scatter_frame(m, ng, ns, wo_w);
     float3 wo = to_local(&f, wo_w), wi = to_local(&f, wi_w);
+#ifdef CLP_HAS_MAT_DIELECTRIC
+    if (m->kind == CLP_MAT_DIELECTRIC) {
+        float alpha = ggx_alpha(m);
+        if (alpha < CLP_SMOOTH_ALPHA) return (float3)(0.0f);
+        /* The lobe (reflection or transmission) must agree between the
+         * shading frame and the geometry, as in material_sample. */
+        if ((wi.z * wo.z > 0.0f) != (dot(wi_w, ng) * dot(wo_w, ng) > 0.0f)) return (float3)(0.0f);
+        float eta = wo.z > 0.0f ? m->ior : 1.0f / m->ior;
+        if (wo.z < 0.0f) { wo.z = -wo.z; wi.z = -wi.z; } /* mirror an inside wo above the surface */
+        float fc = rough_dielectric_eval(wo, wi, alpha, eta, pdf);
+        return wi.z < 0.0f ? load3g(m->albedo) * fc : (float3)(fc);
+    }
+#endif
     if (dot(wi_w, ng) * dot(wo_w, ng) <= 0.0f) return (float3)(0.0f); /* reflection only, below this line */
     if (wo.z <= 0.0f || wi.z <= 0.0f) return (float3)(0.0f);
     switch (m->kind) {
@@ -223,9 +293,21 @@ inline int material_sample(global const Material* m, float3 ng, float3 ns, float
 #endif
 #ifdef CLP_HAS_MAT_DIELECTRIC
     case CLP_MAT_DIELECTRIC: {
-        /* Smooth glass. wo.z > 0: wo is outside (the front of the winding). */
+        /* wo.z > 0: wo is outside (the front of the winding). */
         int outside = wo.z > 0.0f;
         float eta = outside ? m->ior : 1.0f / m->ior; /* n_transmitted / n_incident for light along -wi */
+        float alpha = ggx_alpha(m);
+        if (alpha >= CLP_SMOOTH_ALPHA) {
+            float3 wm = (float3)(wo.x, wo.y, fabs(wo.z)), wi;
+            float weight;
+            if (!rough_dielectric_sample(wm, alpha, eta, u1, u2, u3, &wi, &s->pdf, &weight)) return 0;
+            if (!outside) wi.z = -wi.z;
+            s->wi = from_local(&f, wi);
+            s->weight = wi.z * wo.z < 0.0f ? load3g(m->albedo) * weight : (float3)(weight);
+            /* Reflection must stay on wo's side of the triangle, transmission cross it. */
+            return (dot(s->wi, ng) * dot(wo_w, ng) > 0.0f) == (wi.z * wo.z > 0.0f);
+        }
+        /* Smooth glass. */
         float cos_o = fabs(wo.z);
         float F = fresnel_dielectric(cos_o, eta);
         s->delta = 1;

@@ -34,8 +34,6 @@ void validate_scene(const Scene& s) {
         const Material& m = s.materials[i];
         const std::string name = i < s.material_names.size() ? s.material_names[i] : std::to_string(i);
         if (m.kind >= CLP_MAT_KIND_COUNT) throw Error("material '" + name + "': unknown kind");
-        if (m.kind == CLP_MAT_DIELECTRIC && m.roughness > 0)
-            throw Error("material '" + name + "': rough dielectrics are not supported (roughness must be 0)");
         if (m.kind == CLP_MAT_DIELECTRIC && !(m.ior > 0))
             throw Error("material '" + name + "': index of refraction must be positive");
     }

@@ -191,13 +191,16 @@ TEST(LightTransport, AmbientOcclusionOpenPlaneAndCorner) {
 }
 
 namespace {
-// The thesis box with a glossy box and a glass ball added: every kind of
-// path the integrators treat differently.
+// The thesis box with a glossy box, a glass ball, a rough glass box and a
+// mirror ball added: every kind of path the integrators treat differently.
 Scene mixed_cornell() {
     Scene s = cornell_thesis_scene();
     const auto glossy = s.add_material("test-glossy", conductor(glm::vec3(0.9f, 0.8f, 0.6f), 0.4f));
     const auto glass = s.add_material("test-glass", dielectric(1.5f));
     const auto chrome = s.add_material("test-mirror", mirror(glm::vec3(0.9f)));
+    const auto frosted = s.add_material("test-rough-glass", dielectric(1.5f, 0.3f));
+    s.add_triangles(transformed(make_box(), shape_transform({-0.3f, 0.45f, 0.1f}, {0.3f, 0.5f, 0}, glm::vec3(0.1f))),
+                    frosted);
     s.add_triangles(transformed(make_icosphere(2), shape_transform({-0.25f, 0.0f, -0.25f}, {0, 0, 0}, glm::vec3(0.1f))),
                     glass);
     s.add_triangles(transformed(make_box(), shape_transform({0.25f, 0.0f, -0.3f}, {0, 0.4f, 0}, glm::vec3(0.12f))),
