@@ -16,12 +16,6 @@ namespace {
 
 constexpr std::size_t kSamplesPerPixel = 16;  // kernels/ray_batches.cl: a 4x4 grid
 
-const std::vector<std::string>& batch_kernel_files() {
-    static const std::vector<std::string> files = {"rng.cl",      "sampling.cl", "camera.cl",
-                                                   "intersect.cl", "traverse.cl", "ray_batches.cl"};
-    return files;
-}
-
 // Indices of the rays checked: all, or `check` evenly spaced over the batch
 // (so every part of the image is represented).
 std::vector<std::size_t> checked_rays(std::size_t count, std::size_t check) {
@@ -48,6 +42,17 @@ void parallel_for(std::size_t n, F f) {
     for (auto& j : jobs) j.get();
 }
 
+std::string mismatch_report(std::size_t i, const BatchRay& r, std::int64_t dev_prim, double dev_t,
+                            std::int64_t cpu_prim, double cpu_t) {
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "ray %zu (from primary %u): o = (%.9g, %.9g, %.9g), d = (%.9g, %.9g, %.9g), tmax %.9g: device "
+                  "triangle %lld at t %.9g, CPU triangle %lld at t %.9g",
+                  i, r.src, r.o[0], r.o[1], r.o[2], r.d[0], r.d[1], r.d[2], r.tmax, (long long)dev_prim, dev_t,
+                  (long long)cpu_prim, cpu_t);
+    return buf;
+}
+
 BatchAgreement check_closest(const Bvh& reference, const std::vector<TriVerts>& device_tris,
                              const std::vector<BatchRay>& rays, const std::vector<BatchHit>& hits, std::size_t check) {
     const auto idx = checked_rays(rays.size(), check);
@@ -67,8 +72,10 @@ BatchAgreement check_closest(const Bvh& reference, const std::vector<TriVerts>& 
             if (prim >= 0) a.max_dt = std::max(a.max_dt, std::abs(double(h.t) - c.t));
         } else if (prim >= 0 && c.prim >= 0 && std::abs(double(h.t) - c.t) <= kTieTolerance * scale) {
             ++a.ties;
+        } else if ((c.prim >= 0 && c.t <= kNearOrigin * scale) || (prim >= 0 && double(h.t) <= kNearOrigin * scale)) {
+            ++a.near_origin;
         } else {
-            ++a.mismatched;
+            if (!a.mismatched++) a.first_mismatch = mismatch_report(idx[k], r, prim, h.t, c.prim, c.t);
         }
     }
     return a;
@@ -81,7 +88,23 @@ BatchAgreement check_any(const Bvh& reference, const std::vector<BatchRay>& rays
     parallel_for(idx.size(), [&](std::size_t k) { cpu[k] = cpu_any_hit(reference, rays[idx[k]]) >= 0; });
     BatchAgreement a;
     a.checked = idx.size();
-    for (std::size_t k = 0; k < idx.size(); ++k) (bool(cpu[k]) == (occluder[idx[k]] >= 0) ? a.identical : a.mismatched)++;
+    for (std::size_t k = 0; k < idx.size(); ++k) {
+        const bool dev = occluder[idx[k]] >= 0;
+        const BatchRay& r = rays[idx[k]];
+        if (bool(cpu[k]) == dev) {
+            ++a.identical;
+            continue;
+        }
+        // Where the two differ, the exact closest occluder tells whether it sits at the origin.
+        const CpuHit c = cpu_closest_hit(reference, r);
+        const double scale = std::max({std::abs(r.o[0]), std::abs(r.o[1]), std::abs(r.o[2])});
+        if (c.prim >= 0 && c.t * std::sqrt(double(r.d[0]) * r.d[0] + double(r.d[1]) * r.d[1] + double(r.d[2]) * r.d[2]) <=
+                               kNearOrigin * scale) {
+            ++a.near_origin;
+        } else if (!a.mismatched++) {
+            a.first_mismatch = mismatch_report(idx[k], rays[idx[k]], dev ? 1 : -1, 0, cpu[k] ? 1 : -1, 0);
+        }
+    }
     return a;
 }
 
@@ -94,6 +117,16 @@ void finish_timing(BatchResult& b) {
 }
 
 }  // namespace
+
+const std::vector<std::string>& ray_batch_kernel_files() {
+    static const std::vector<std::string> files = {"rng.cl",      "sampling.cl", "camera.cl",
+                                                   "intersect.cl", "traverse.cl", "ray_batches.cl"};
+    return files;
+}
+
+std::string ray_batch_build_options(Accel accel) {
+    return accel == Accel::Flat ? "-cl-std=CL1.2 -DCLP_ACCEL_FLAT" : "-cl-std=CL1.2";
+}
 
 glm::vec3 default_bench_light(const Scene& scene) {
     for (const auto& l : scene.lights)
@@ -172,9 +205,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     Buffer secondary_hits = ctx.buffer(n * sizeof(BatchHit), CL_MEM_READ_WRITE, "secondary hits");
     Buffer src = ctx.buffer(n * sizeof(std::uint32_t), CL_MEM_READ_WRITE, "hit list");
 
-    std::string options = "-cl-std=CL1.2";
-    if (o.accel == Accel::Flat) options += " -DCLP_ACCEL_FLAT";
-    BuildResult built = build_program(ctx, program_source(batch_kernel_files()), options);
+    BuildResult built = build_program(ctx, program_source(ray_batch_kernel_files()), ray_batch_build_options(o.accel));
     say(std::string("kernels ") + (built.from_cache ? "loaded from cache" : "compiled") + " in " +
         std::to_string(built.seconds) + " s");
     Kernel make_primary = ctx.kernel(built.program.get(), "batch_primary_rays");
@@ -261,10 +292,10 @@ std::string describe(const BatchResult& b) {
     const BatchAgreement& a = b.agreement;
     std::snprintf(buf, sizeof buf,
                   "%s: %zu rays (%zu hit), kernel %.3f ms mean / %.3f ms best, %.2f Mrays/s; CPU check: %zu rays, "
-                  "%.4f %% identical hits, %zu ties, %zu mismatched, max |dt| %.2g",
+                  "%.4f %% identical hits, %zu ties, %zu at the origin, %zu mismatched, max |dt| %.2g",
                   b.name.c_str(), b.rays, b.hits, b.mean_ms, b.best_ms, b.mrays_per_s, a.checked,
-                  a.identical_percent(), a.ties, a.mismatched, a.max_dt);
-    return buf;
+                  a.identical_percent(), a.ties, a.near_origin, a.mismatched, a.max_dt);
+    return a.first_mismatch.empty() ? std::string(buf) : std::string(buf) + "\n  first mismatch: " + a.first_mismatch;
 }
 
 }  // namespace clpath

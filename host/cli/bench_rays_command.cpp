@@ -91,13 +91,13 @@ int run_rays(const RaysOptions& o) {
     if (!o.csv.empty()) {
         std::ostringstream csv;
         csv << "device,scene,triangles,accel,batch,width,height,workgroup,rays,hits,launches,mean_ms,best_ms,"
-               "mrays_per_s,checked,identical_percent,ties,mismatched,max_dt\n";
+               "mrays_per_s,checked,identical_percent,ties,near_origin,mismatched,max_dt\n";
         for (const auto& b : r.batches) {
             char line[512];
-            std::snprintf(line, sizeof line, ",%zu,%s,%s,%d,%d,%zu,%zu,%zu,%zu,%.4f,%.4f,%.3f,%zu,%.4f,%zu,%zu,%.3g\n",
+            std::snprintf(line, sizeof line, ",%zu,%s,%s,%d,%d,%zu,%zu,%zu,%zu,%.4f,%.4f,%.3f,%zu,%.4f,%zu,%zu,%zu,%.3g\n",
                           r.triangles, accel_name(r.accel), b.name.c_str(), bo.width, bo.height, bo.workgroup, b.rays,
                           b.hits, b.launch_ms.size(), b.mean_ms, b.best_ms, b.mrays_per_s, b.agreement.checked,
-                          b.agreement.identical_percent(), b.agreement.ties, b.agreement.mismatched,
+                          b.agreement.identical_percent(), b.agreement.ties, b.agreement.near_origin, b.agreement.mismatched,
                           b.agreement.max_dt);
             csv << csv_field(r.device) << "," << csv_field(r.scene) << line;
         }
