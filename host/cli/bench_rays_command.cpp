@@ -129,7 +129,7 @@ Command add_bench_rays_command(CLI::App& bench) {
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
     cmd->add_option("--workgroup", o->workgroup, "Work-items per work-group (0: the driver chooses)")
-        ->check(CLI::Range(std::size_t(0), std::size_t(4096)))
+        ->check(CLI::Range(std::size_t(0), std::size_t(1) << 20))
         ->capture_default_str();
     cmd->add_option("--accel", o->accel, "Acceleration structure: bvh, or flat (one box per object)")
         ->check(CLI::IsMember(accel_names()))

@@ -5,6 +5,7 @@
 
 #include "scene/builtin_scenes.hpp"
 #include "support/render_helpers.hpp"
+#include "util/error.hpp"
 
 using namespace clpath;
 
