@@ -27,7 +27,7 @@ LAUNCHES=${RAY_LAUNCHES:-5}
 ROOMS=${ROOM_SIZES:-"1003542 3996202"}
 BUNNY_OBJ=/usr/share/glmark2/models/bunny.obj
 
-device_line=$("$CLPATH" devices 2>/dev/null | grep -i -- "${SPEC:-.}" | head -n 1 || true)
+device_line=$("$CLPATH" devices 2>/dev/null | grep -i -- "${SPEC:-.}" | grep "\[" | head -n 1 | sed "s/^ *//" || true)
 commit=$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)
 dirty=$(git -C "$ROOT" status --porcelain --untracked-files=no 2>/dev/null | grep -q . && echo " (with uncommitted changes)" || true)
 date=$(date -u +%FT%TZ)
