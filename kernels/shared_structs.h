@@ -183,6 +183,24 @@ typedef struct {
     float comp[4];
 } AccumPixel;
 
+/* One ray of a ray-batch benchmark (clpath bench rays): the batch kernels
+ * read these, so loading rays is part of the measured time, as in other
+ * GPU traversal benchmarks. tmax bounds the hit distance in units of |d|. */
+typedef struct {
+    float o[3];
+    float tmax;
+    float d[3];
+    uint src; /* the primary ray a secondary ray starts from; for primaries, its own index */
+} BatchRay;
+
+/* What a batch kernel found: tri indexes the uploaded (leaf-ordered)
+ * triangles, -1 for a miss; any-hit batches fill tri only. */
+typedef struct {
+    float t;
+    float b1, b2;
+    int tri;
+} BatchHit;
+
 CLP_STATIC_ASSERT(sizeof(BvhNode) == 64, bvh_node_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(TriVerts) == 48, tri_verts_is_48_bytes);
 CLP_STATIC_ASSERT(sizeof(Material) == 48, material_is_48_bytes);
@@ -192,5 +210,7 @@ CLP_STATIC_ASSERT(sizeof(Light) == 64, light_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(AliasEntry) == 16, alias_entry_is_16_bytes);
 CLP_STATIC_ASSERT(sizeof(Counters) == 16, counters_is_16_bytes);
 CLP_STATIC_ASSERT(sizeof(AccumPixel) == 32, accum_pixel_is_32_bytes);
+CLP_STATIC_ASSERT(sizeof(BatchRay) == 32, batch_ray_is_32_bytes);
+CLP_STATIC_ASSERT(sizeof(BatchHit) == 16, batch_hit_is_16_bytes);
 
 #endif

@@ -29,3 +29,15 @@ echo "== renders" | tee "$OUT/summary.txt"
 # Speed: steady state on the GPU.
 "$B/clpath" render --device nvidia --spp 4096 --seed 3 -q -o "$OUT/cornell-gpu-4096.pfm" 2>&1 | tee -a "$OUT/summary.txt"
 "$B/clpath" render --device nvidia --spp 1024 --seed 4 --rr depth --max-depth 10 -q -o /tmp/thesis-rule.pfm 2>&1 | tee -a "$OUT/summary.txt"
+
+# The full scaling and ray-batch benchmarks on the GPU (issue 6), results under
+# $OUT/results/<device-dir>/{scaling,rays}: copy them into
+# benchmarks/results/ on the main machine and plot there
+# (benchmarks/scaling/plot_scaling.py; the GPU machine may lack matplotlib).
+# GPU_BENCH_DIR names the device folder (default nvidia-h100); the ROADMAP
+# table's scenes are among the rays runs (bunny, room:1003542, room:3996202).
+echo "== scaling and ray-batch benchmarks on the GPU" | tee "$OUT/bench.txt"
+GPU_DIR=${GPU_BENCH_DIR:-nvidia-h100}
+PLOT=0 SCALING_MAX=${SCALING_MAX:-3e7} TIME_CAP=${TIME_CAP:-60} RAY_LAUNCHES=${RAY_LAUNCHES:-10} \
+  timeout 1500 benchmarks/scaling/run.sh "$GPU_DIR" nvidia "$B" 2>&1 | tail -n 60 | tee -a "$OUT/bench.txt"
+mkdir -p "$OUT/results" && cp -r "benchmarks/results/$GPU_DIR" "$OUT/results/" 2>/dev/null

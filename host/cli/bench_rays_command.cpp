@@ -1,12 +1,146 @@
-// clpath bench rays: not built yet (issue 6).
+// clpath bench rays: the ray-batch traversal benchmark (bench/ray_batches.hpp).
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench/ray_batches.hpp"
+#include "bench/report_files.hpp"
+#include "cl/context.hpp"
 #include "cli/commands.hpp"
+#include "scene/scene_loader.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
+namespace {
+
+struct RaysOptions {
+    std::string scene;
+    int width = 480, height = 320;
+    std::string camera, light, csv, device, accel = "bvh";
+    int launches = 5;
+    std::size_t workgroup = 64, check = std::size_t(1) << 18;
+    std::uint32_t seed = 0;
+    bool quick = false;
+};
+
+// "1,2.5,-3" -> {1, 2.5, -3}; what names the option in messages.
+std::vector<float> parse_numbers(const std::string& text, const std::string& what) {
+    std::vector<float> v;
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        char* end = nullptr;
+        const float x = std::strtof(item.c_str(), &end);
+        if (item.empty() || *end != '\0' || !std::isfinite(x))
+            throw Error(what + " '" + text + "': '" + item + "' is not a finite number");
+        v.push_back(x);
+    }
+    return v;
+}
+
+int run_rays(const RaysOptions& o) {
+    RayBenchOptions bo;
+    bo.width = o.quick ? 32 : o.width;
+    bo.height = o.quick ? 24 : o.height;
+    bo.launches = o.quick ? 1 : o.launches;
+    bo.workgroup = o.workgroup;
+    bo.accel = parse_accel(o.accel);
+    bo.check = o.quick ? 0 : o.check;
+    bo.seed = o.seed;
+    if (!o.light.empty()) {
+        const auto l = parse_numbers(o.light, "--light");
+        if (l.size() != 3) throw Error("--light '" + o.light + "': expected x,y,z");
+        bo.light = glm::vec3(l[0], l[1], l[2]);
+    }
+    if (!o.csv.empty()) check_report_path(o.csv, "--csv");
+
+    Scene scene = load_scene(o.scene);
+    for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
+    if (!o.camera.empty()) {
+        const auto c = parse_numbers(o.camera, "--camera");
+        if (c.size() != 6 && c.size() != 7)
+            throw Error("--camera '" + o.camera + "': expected eye_x,eye_y,eye_z,target_x,target_y,target_z[,vfov_degrees]");
+        scene.camera.eye = {c[0], c[1], c[2]};
+        scene.camera.target = {c[3], c[4], c[5]};
+        scene.camera.up = {0, 1, 0};
+        if (c.size() == 7) scene.camera.vfov_degrees = c[6];
+    }
+    const DeviceInfo device = select_device(o.device);
+    Context ctx(device);
+    std::fprintf(stderr, "clpath: bench rays '%s' (%zu triangles, %s) at %dx%d x 16 samples on %s\n", scene.name.c_str(),
+                 scene.triangle_count(), accel_name(bo.accel), bo.width, bo.height, device.describe().c_str());
+    RayBenchResult r;
+    try {
+        r = run_ray_bench(ctx, scene, bo, [](const std::string& s) { std::fprintf(stderr, "clpath: %s\n", s.c_str()); });
+    } catch (const Error& e) {
+        throw Error(o.scene + ": " + e.what());
+    }
+    std::printf("scene: %s, %zu triangles, %s (%zu nodes, SAH %.2f, %.1f bytes per triangle), light %g,%g,%g, "
+                "work-group %zu, device \"%s\"\n",
+                r.scene.c_str(), r.triangles, accel_name(r.accel), r.structure.node_count, r.structure.sah_cost,
+                double(r.structure_bytes) / double(r.triangles), r.light.x, r.light.y, r.light.z, bo.workgroup,
+                r.device.c_str());
+    bool agree = true;
+    for (const auto& b : r.batches) {
+        std::printf("%s\n", describe(b).c_str());
+        agree = agree && b.agreement.agrees();
+    }
+    if (!o.csv.empty()) {
+        std::ostringstream csv;
+        csv << "device,scene,triangles,accel,batch,width,height,workgroup,rays,hits,launches,mean_ms,best_ms,"
+               "mrays_per_s,checked,identical_percent,ties,near_origin,mismatched,max_dt\n";
+        for (const auto& b : r.batches) {
+            char line[512];
+            std::snprintf(line, sizeof line, ",%zu,%s,%s,%d,%d,%zu,%zu,%zu,%zu,%.4f,%.4f,%.3f,%zu,%.4f,%zu,%zu,%zu,%.3g\n",
+                          r.triangles, accel_name(r.accel), b.name.c_str(), bo.width, bo.height, bo.workgroup, b.rays,
+                          b.hits, b.launch_ms.size(), b.mean_ms, b.best_ms, b.mrays_per_s, b.agreement.checked,
+                          b.agreement.identical_percent(), b.agreement.ties, b.agreement.near_origin, b.agreement.mismatched,
+                          b.agreement.max_dt);
+            csv << csv_field(r.device) << "," << csv_field(r.scene) << line;
+        }
+        write_report_file(o.csv, csv.str());
+        std::fprintf(stderr, "clpath: wrote %s\n", o.csv.c_str());
+    }
+    if (!agree) {
+        std::fprintf(stderr, "clpath: error: the device's hits disagree with the CPU reference (see 'mismatched')\n");
+        return 3;
+    }
+    return 0;
+}
+
+}  // namespace
 
 Command add_bench_rays_command(CLI::App& bench) {
-    bench.add_subcommand("rays", "(not built yet)");
-    return []() -> int { throw Error("clpath bench rays is not built yet"); };
+    auto o = std::make_shared<RaysOptions>();
+    CLI::App* cmd = bench.add_subcommand(
+        "rays", "Ray-batch traversal benchmark: primary, shadow and diffuse batches, Mrays/s, checked on the CPU");
+    cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj) or built-in scene (cornell, scaling:N, room:N)")
+        ->required();
+    cmd->add_option("--width", o->width, "Pixels across (a multiple of 4)")->check(CLI::Range(4, 16384))->capture_default_str();
+    cmd->add_option("--height", o->height, "Pixels down (a multiple of 4)")->check(CLI::Range(4, 16384))->capture_default_str();
+    cmd->add_option("--camera", o->camera, "eye_x,eye_y,eye_z,target_x,target_y,target_z[,vfov] (default: the scene's)");
+    cmd->add_option("--light", o->light,
+                    "Point light x,y,z for the shadow rays (default: the scene's point light, else just below its "
+                    "emitters, else above its bounding box)");
+    cmd->add_option("--launches", o->launches, "Timed launches per batch, after one warm-up")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    cmd->add_option("--workgroup", o->workgroup, "Work-items per work-group (0: the driver chooses)")
+        ->check(CLI::Range(std::size_t(0), std::size_t(1) << 20))
+        ->capture_default_str();
+    cmd->add_option("--accel", o->accel, "Acceleration structure: bvh, or flat (one box per object)")
+        ->check(CLI::IsMember(accel_names()))
+        ->capture_default_str();
+    cmd->add_option("--check", o->check, "Rays per batch checked against the CPU reference, evenly spaced (0: all)")
+        ->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Seed of the diffuse directions")->capture_default_str();
+    cmd->add_option("--csv", o->csv, "Write the results as CSV to this file");
+    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
+    cmd->add_flag("--quick", o->quick, "32x24 pixels, one timed launch, every ray checked (for CI)");
+    return [o] { return run_rays(*o); };
 }
 
 }  // namespace clpath

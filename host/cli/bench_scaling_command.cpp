@@ -1,12 +1,102 @@
-// clpath bench scaling: not built yet (issue 6).
+// clpath bench scaling: the triangle-count scaling benchmark (bench/scaling.hpp).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "bench/report_files.hpp"
+#include "bench/scaling.hpp"
+#include "cl/context.hpp"
 #include "cli/commands.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
+namespace {
+
+struct ScalingCliOptions {
+    double min = 100, max = 10'000'000;
+    double time_cap = 60;
+    std::string accel = "both", csv, md, device;
+    int width = 96, height = 64, launches = 3;
+    bool quick = false;
+};
+
+std::size_t whole_count(double v, const char* what) {
+    if (!(v >= 100 && v <= 5e7) || v != std::floor(v))
+        throw Error(std::string(what) + " " + std::to_string(v) + ": expected a whole number of triangles in [100, 5e7]");
+    return std::size_t(v);
+}
+
+int run_scaling_cli(const ScalingCliOptions& c) {
+    ScalingOptions o;
+    o.min = whole_count(c.min, "--min");
+    o.max = whole_count(c.max, "--max");
+    if (o.min > o.max) throw Error("--min " + std::to_string(o.min) + " is larger than --max " + std::to_string(o.max));
+    o.time_cap_s = c.time_cap;
+    o.bvh = c.accel != "flat";
+    o.flat = c.accel != "bvh";
+    o.ray_width = c.width;
+    o.ray_height = c.height;
+    o.launches = c.launches;
+    if (c.quick) {
+        o.min = 100;
+        o.max = std::min<std::size_t>(o.max, 1000);
+        o.ray_width = 16;
+        o.ray_height = 12;
+        o.launches = 1;
+        o.check = 0;
+        o.path_width = 16;
+        o.path_height = 12;
+        o.path_spp = 1;
+    }
+    if (o.ray_width % 4 || o.ray_height % 4) throw Error("--width and --height must be multiples of 4");
+    if (!c.csv.empty()) check_report_path(c.csv, "--csv");
+    if (!c.md.empty()) check_report_path(c.md, "--md");
+    const DeviceInfo device = select_device(c.device);
+    Context ctx(device);
+    std::fprintf(stderr, "clpath: bench scaling %zu..%zu triangles (%s) on %s\n", o.min, o.max, c.accel.c_str(),
+                 device.describe().c_str());
+    const auto rows = run_scaling(ctx, o, [](const std::string& s) { std::printf("%s\n", s.c_str()); std::fflush(stdout); });
+    const std::string md = scaling_markdown(rows, device.name);
+    std::printf("\n%s", md.c_str());
+    if (!c.csv.empty()) write_report_file(c.csv, scaling_csv(rows, device.name));
+    if (!c.md.empty()) write_report_file(c.md, md);
+    std::size_t mismatched = 0;
+    for (const auto& r : rows) mismatched += r.mismatched;
+    if (mismatched) {
+        std::fprintf(stderr, "clpath: error: %zu rays disagree with the CPU reference\n", mismatched);
+        return 3;
+    }
+    return 0;
+}
+
+}  // namespace
 
 Command add_bench_scaling_command(CLI::App& bench) {
-    bench.add_subcommand("scaling", "(not built yet)");
-    return []() -> int { throw Error("clpath bench scaling is not built yet"); };
+    auto o = std::make_shared<ScalingCliOptions>();
+    CLI::App* cmd = bench.add_subcommand(
+        "scaling", "Triangle-count scaling: build time, SAH, memory, ray batches and path samples/s, BVH and flat");
+    cmd->add_option("--min", o->min, "Fewest triangles (>= 100)")->capture_default_str();
+    cmd->add_option("--max", o->max, "Most triangles (<= 5e7; sizes go in 1-3-10 steps)")->capture_default_str();
+    cmd->add_option("--time-cap", o->time_cap, "Flat structure: stop before a size predicted to take longer (seconds)")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    cmd->add_option("--accel", o->accel, "Structures to measure: both, bvh, flat")
+        ->check(CLI::IsMember({"both", "bvh", "flat"}))
+        ->capture_default_str();
+    cmd->add_option("--width", o->width, "Ray batches: pixels across (multiple of 4; x 16 samples)")
+        ->check(CLI::Range(4, 4096))
+        ->capture_default_str();
+    cmd->add_option("--height", o->height, "Ray batches: pixels down (multiple of 4)")
+        ->check(CLI::Range(4, 4096))
+        ->capture_default_str();
+    cmd->add_option("--launches", o->launches, "Timed launches per batch")->check(CLI::Range(1, 100))->capture_default_str();
+    cmd->add_option("--csv", o->csv, "Write the table as CSV to this file");
+    cmd->add_option("--md", o->md, "Write the table as Markdown to this file");
+    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
+    cmd->add_flag("--quick", o->quick, "100 and 1000 triangles at a tiny resolution (for CI)");
+    return [o] { return run_scaling_cli(*o); };
 }
 
 }  // namespace clpath

@@ -33,6 +33,7 @@ struct RenderOptions {
     std::string device;
     int leaf_size = 4, bins = 16;
     bool quiet = false;
+    std::string accel = "bvh";
 };
 
 int run_render(const RenderOptions& o) {
@@ -55,6 +56,7 @@ int run_render(const RenderOptions& o) {
     settings.all_features = o.all_features;
     settings.bvh.max_leaf_size = o.leaf_size;
     settings.bvh.bins = o.bins;
+    settings.accel = parse_accel(o.accel);
     if (o.width) scene.camera.width = o.width;
     if (o.height) scene.camera.height = o.height;
     std::vector<std::string> outputs = o.outputs;
@@ -116,10 +118,11 @@ int run_render(const RenderOptions& o) {
     const double samples = double(st.samples_per_pixel) * scene.camera.width * scene.camera.height;
     std::printf(
         "summary: device=\"%s\" integrator=%s triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f spp=%llu "
-        "render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu\n",
+        "render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s\n",
         device.name.c_str(), integrator_name(settings.integrator), renderer.triangle_count(), renderer.bvh_stats().build_ms, renderer.bvh_stats().node_count,
         renderer.bvh_stats().sah_cost, (unsigned long long)st.samples_per_pixel, wall, samples / wall * 1e-6,
-        double(st.rays) / wall * 1e-6, (unsigned long long)st.rays, (unsigned long long)st.nonfinite);
+        double(st.rays) / wall * 1e-6, (unsigned long long)st.rays, (unsigned long long)st.nonfinite,
+        accel_name(settings.accel));
     if (st.nonfinite)
         std::fprintf(stderr, "clpath: warning: %llu samples were NaN or infinite and were dropped\n",
                      (unsigned long long)st.nonfinite);
@@ -163,6 +166,10 @@ Command add_render_command(CLI::App& app) {
         ->check(CLI::Range(1, 64))
         ->capture_default_str();
     cmd->add_option("--bins", o->bins, "BVH: SAH bins per axis")->check(CLI::Range(2, 256))->capture_default_str();
+    cmd->add_option("--accel", o->accel, "Acceleration structure: bvh, or flat (one box per object, the thesis "
+                    "renderer's; a baseline)")
+        ->check(CLI::IsMember(accel_names()))
+        ->capture_default_str();
     cmd->add_flag("--quiet,-q", o->quiet, "Print only the summary line");
     return [o] { return run_render(*o); };
 }

@@ -34,6 +34,7 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
     KernelFeatures f;
     f.integrator = settings.integrator;
     f.max_depth = settings.max_depth;
+    f.flat_accel = settings.accel == Accel::Flat;
     const bool path = settings.integrator == CLP_INTEGRATOR_PATH;
     const bool light_transport = path || settings.integrator == CLP_INTEGRATOR_PATH_BSDF;
     if (settings.all_features) {
@@ -62,6 +63,7 @@ std::string build_options(const KernelFeatures& f) {
     if (f.environment) o += " -DCLP_HAS_ENV";
     if (f.environment_map) o += " -DCLP_HAS_ENV_MAP";
     if (f.normals) o += " -DCLP_HAS_NORMALS";
+    if (f.flat_accel) o += " -DCLP_ACCEL_FLAT";
     o += " -DCLP_INTEGRATOR=" + std::to_string(f.integrator) + "u";
     o += " -DCLP_MAX_DEPTH=" + std::to_string(f.max_depth) + "u";
     return o;
@@ -79,6 +81,7 @@ std::string describe(const KernelFeatures& f) {
     add(f.environment, "environment");
     add(f.environment_map, "environment-map");
     add(f.normals, "normals");
+    add(f.flat_accel, "flat-accel");
     return s;
 }
 

@@ -74,10 +74,12 @@ Renderer::Renderer(Context& ctx, const Scene& scene, const RenderSettings& setti
     light_count_ = lights.lights.size();
     env_light_ = lights.environment;
 
-    Bvh bvh = build_bvh(scene.vertices, settings.bvh);
+    if (settings.accel == Accel::Flat && scene.triangle_object.size() != scene.triangle_count())
+        throw Error("internal: scene '" + scene.name + "' has no object id for every triangle (needed by --accel flat)");
+    Bvh bvh = build_accel(settings.accel, scene.vertices, scene.triangle_object, settings.bvh);
     bvh_stats_ = bvh.stats;
     for (auto& t : bvh.triangles) t.light = lights.light_of_triangle[t.prim];
-    bvh_nodes_ = bvh.nodes;
+    if (settings.accel == Accel::Bvh) bvh_nodes_ = bvh.nodes;  // the flat list is no tree to draw
 
     // Kernels take no empty buffers: a missing part gets one zero record.
     const std::size_t pixels = std::size_t(camera_.width) * camera_.height;
@@ -164,6 +166,9 @@ void Renderer::set_camera(const Camera& camera) {
 
 void Renderer::set_settings(const RenderSettings& settings) {
     validate_settings(settings);
+    if (settings.accel != settings_.accel)
+        throw Error(std::string("the acceleration structure cannot change in a running renderer (it was built as ") +
+                    accel_name(settings_.accel) + "); make a new renderer for " + accel_name(settings.accel));
     settings_ = settings;
     const KernelFeatures f = kernel_features(scene_features_, settings_);
     if (!(f == features_)) {

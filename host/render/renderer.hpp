@@ -51,7 +51,7 @@ public:
     void resolve_on_device(float exposure = 1.0f);
     const Buffer& srgb_buffer() const { return srgb_; }
     const Buffer& linear_buffer() const { return linear_; }
-    // The flattened BVH, kept on the host for the viewer's box overlay.
+    // The flattened BVH, kept on the host for the viewer's box overlay (empty with Accel::Flat).
     const std::vector<BvhNode>& bvh_nodes() const { return bvh_nodes_; }
 
     const RenderStats& stats() const { return stats_; }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "bvh/accel.hpp"
 #include "bvh/bvh.hpp"
 #include "scene/scene.hpp"
 #include "shared_structs.h"
@@ -25,6 +26,9 @@ struct RenderSettings {
     // driver's watchdog and an interactive viewer, long enough to keep a device busy.
     double target_launch_seconds = 0.1;
     BvhBuildOptions bvh;
+    // The acceleration structure: the BVH, or the thesis renderer's one box
+    // per object (the baseline of the benchmarks). Fixed for a Renderer's life.
+    Accel accel = Accel::Bvh;
 };
 
 // Throw clpath::Error naming the valid choices for an unknown name.

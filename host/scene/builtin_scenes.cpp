@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <utility>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -66,6 +67,7 @@ Scene scaling_scene(std::size_t triangles) {
     const std::size_t room = 12;
     s.vertices.resize(room * 3);
     s.triangle_material.resize(room);
+    s.triangle_object.resize(room);
     s.name = "scaling";
     // The sphere's bumps stay the same at every count: only the tessellation
     // changes, so the BVH and traversal see the same shape in more pieces.
@@ -83,18 +85,46 @@ Scene scaling_scene(std::size_t triangles) {
     return s;
 }
 
-std::vector<std::string> builtin_scene_names() { return {"cornell", "scaling:N"}; }
+Scene closed_room_scene(std::size_t triangles) {
+    if (triangles < 100 || triangles > 50'000'000)
+        throw Error("room:" + std::to_string(triangles) + ": the triangle count must be in [100, 50000000]");
+    Scene s;
+    const auto white = s.add_material("default", diffuse({0.740063f, 0.742313f, 0.733934f}));
+    const auto lamp = s.add_material("emissive", emitter(glm::vec3(1.0f, 0.93f, 0.85f) * 15.0f, true));
+    // The thesis room, deepened to z = -1.3 so the camera (z = -1.2) is inside;
+    // the cube's triangles face out, so mirroring one axis (which transformed()
+    // compensates) would not turn them in: swap the winding by hand.
+    auto room = transformed(make_box(), shape_transform({0, 0.4f, -0.4f}, {0, 0, 0}, {1.0f, 1.0f, 1.8f}));
+    for (std::size_t i = 0; i + 2 < room.size(); i += 3) std::swap(room[i + 1], room[i + 2]);
+    s.add_triangles(room, white);
+    s.add_triangles(transformed(make_plane(), shape_transform({0, 0.85f, -0.1f}, {0, 0, 0}, {0.4f, 1, 0.4f})), lamp);
+    Bumps bumps;  // as scaling_scene
+    bumps.kind = Bumps::Kind::Sine;
+    bumps.amplitude = 0.06f;
+    bumps.frequency = 1.5f;
+    const ShapeMesh sphere = make_uv_sphere(triangles - s.triangle_count(), bumps);
+    s.add_triangles(transformed(sphere.vertices, shape_transform({0, 0.17f, -0.1f}, {0, 0, 0}, glm::vec3(0.25f))),
+                    white);
+    s.camera = cornell_thesis_scene().camera;
+    s.name = "room-" + std::to_string(s.triangle_count());
+    return s;
+}
+
+std::vector<std::string> builtin_scene_names() { return {"cornell", "scaling:N", "room:N"}; }
 
 Scene builtin_scene(const std::string& name) {
     if (name == "cornell") return cornell_thesis_scene();
-    if (name.rfind("scaling:", 0) == 0) {
-        // "scaling:1000000" or "scaling:1e6".
-        const std::string count = name.substr(8);
+    // "scaling:1000000" or "scaling:1e6"; the same for "room:".
+    for (const auto& [prefix, make] : {std::pair{std::string("scaling:"), &scaling_scene},
+                                       std::pair{std::string("room:"), &closed_room_scene}}) {
+        if (name.rfind(prefix, 0) != 0) continue;
+        const std::string count = name.substr(prefix.size());
         char* end = nullptr;
         const double n = std::strtod(count.c_str(), &end);
         if (count.empty() || *end != '\0' || !(n >= 1) || n != std::floor(n) || n > 1e12)
-            throw Error(name + ": expected scaling:N with N a whole number of triangles, e.g. scaling:100000 or scaling:1e6");
-        return scaling_scene(std::size_t(n));
+            throw Error(name + ": expected " + prefix + "N with N a whole number of triangles, e.g. " + prefix +
+                        "100000 or " + prefix + "1e6");
+        return make(std::size_t(n));
     }
     std::string names;
     for (const auto& n : builtin_scene_names()) names += " " + n;

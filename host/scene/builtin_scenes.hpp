@@ -19,6 +19,13 @@ Scene cornell_thesis_scene();
 // Accepted counts: 100 to 50,000,000. Its name carries the actual count.
 Scene scaling_scene(std::size_t triangles);
 
+// A closed room (every ray from the camera hits something, as in the closed
+// room + displaced sphere scene of the ray-traversal benchmarks ROADMAP.md
+// compares with) around the same bumpy sphere as scaling_scene: six inward
+// walls, a lamp under the ceiling and the sphere, about `triangles` in all.
+// The camera is the thesis camera, now inside the room. Counts: 100 to 50,000,000.
+Scene closed_room_scene(std::size_t triangles);
+
 // Names accepted by builtin_scene() ("scaling:N" stands for every count N), and the scene for one of them (throws
 // clpath::Error for an unknown name).
 std::vector<std::string> builtin_scene_names();

@@ -41,6 +41,7 @@ std::uint32_t Scene::add_material(const std::string& name, const Material& m) {
 
 void Scene::add_triangles(const std::vector<glm::vec3>& tris, std::uint32_t material) {
     vertices.insert(vertices.end(), tris.begin(), tris.end());
+    triangle_object.insert(triangle_object.end(), tris.size() / 3, next_object_id());
     triangle_material.insert(triangle_material.end(), tris.size() / 3, material);
 }
 

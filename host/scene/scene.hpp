@@ -61,6 +61,9 @@ struct Scene {
     // which (v0, v1, v2) appear counter-clockwise: normal (v1-v0) x (v2-v0).
     std::vector<glm::vec3> vertices;
     std::vector<std::uint32_t> triangle_material;  // one per triangle
+    // The object (shape or mesh, as the scene defines it) of each triangle, one
+    // per triangle: the flat acceleration structure boxes each object (bvh/flat.hpp).
+    std::vector<std::uint32_t> triangle_object;
     std::vector<Material> materials;
     std::vector<std::string> material_names;  // parallel to materials
     // Empty (flat shading), or three per triangle, parallel to vertices.
@@ -76,8 +79,10 @@ struct Scene {
     std::size_t triangle_count() const { return triangle_material.size(); }
     // Adds a material and returns its index; names must be unique.
     std::uint32_t add_material(const std::string& name, const Material& m);
-    // Appends triangles (3 vertices each) with one material.
+    // Appends triangles (3 vertices each) with one material, as a new object.
     void add_triangles(const std::vector<glm::vec3>& tris, std::uint32_t material);
+    // The id the next object gets (ids are consecutive from 0).
+    std::uint32_t next_object_id() const { return triangle_object.empty() ? 0u : triangle_object.back() + 1u; }
     // Anything that puts light in: an emissive triangle, a punctual light, an environment.
     bool has_emitter() const;
 };

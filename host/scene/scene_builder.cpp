@@ -60,6 +60,7 @@ void SceneBuilder::add(const std::vector<glm::vec3>& vertices, const std::vector
     scene_.triangle_material.reserve(scene_.triangle_material.size() + n);
     if (with_normals_) scene_.normals.reserve(scene_.normals.size() + vertices.size());
 
+    const std::uint32_t object = scene_.next_object_id();
     std::size_t dropped = 0;
     for (std::size_t t = 0; t < n; ++t) {
         glm::vec3 p[3];
@@ -71,6 +72,7 @@ void SceneBuilder::add(const std::vector<glm::vec3>& vertices, const std::vector
         const int c1 = flip ? 2 : 1, c2 = flip ? 1 : 2;
         scene_.vertices.insert(scene_.vertices.end(), {p[0], p[c1], p[c2]});
         scene_.triangle_material.push_back(materials.size() == 1 ? materials[0] : materials[t]);
+        scene_.triangle_object.push_back(object);
         if (!with_normals_) continue;
         const glm::vec3 flat = flat_normal(p[0], p[c1], p[c2]);
         glm::vec3 out[3] = {flat, flat, flat};

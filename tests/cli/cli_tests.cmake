@@ -93,3 +93,43 @@ clpath_scene_cli_test(too_large_for_device FAIL ENV CLPATH_DEVICE_MEMORY_LIMIT=4
                       FORBID ${CLI_OUT}/large.pfm)
 clpath_scene_cli_test(unwritable_output FAIL ARGS render ${CMAKE_SOURCE_DIR}/scenes/cornell-classic.json --spp 1
                       -o ${CLI_OUT}/missing-folder/x.png OUTPUT "missing-folder does not exist")
+
+# --- benchmarks: quick modes (seconds each) and bad arguments ---------------------------
+function(clpath_bench_quick_test name csv header zero_column min_rows)
+    add_test(NAME cli.bench.${name}
+             COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:clpath>;${ARGN};--csv;${csv}" -DCSV=${csv}
+                     "-DHEADER=${header}" -DMIN_ROWS=${min_rows} -DZERO_COLUMN=${zero_column}
+                     -P ${CMAKE_CURRENT_SOURCE_DIR}/bench/bench_quick.cmake)
+    set_tests_properties(cli.bench.${name} PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 300)
+endfunction()
+set(RAYS_HEADER "^device,scene,triangles,accel,batch,width,height,workgroup,rays,hits,launches,mean_ms,best_ms,mrays_per_s,checked,identical_percent,ties,near_origin,mismatched,max_dt$")
+set(SCALING_HEADER "^device,requested,triangles,accel,generate_ms,build_ms,build_mtris_per_s,sah_cost,nodes,bytes_per_triangle,primary_mrays_per_s,shadow_mrays_per_s,diffuse_mrays_per_s,path_msamples_per_s,checked_rays,mismatched,seconds,skipped$")
+# Every ray of the quick batches is checked on the CPU: no mismatch is allowed.
+clpath_bench_quick_test(rays_quick_bvh ${CLI_OUT}/rays-bvh.csv "${RAYS_HEADER}" mismatched 3 bench rays cornell --quick)
+clpath_bench_quick_test(rays_quick_flat ${CLI_OUT}/rays-flat.csv "${RAYS_HEADER}" mismatched 3
+                        bench rays cornell --quick --accel flat)
+clpath_bench_quick_test(rays_quick_room ${CLI_OUT}/rays-room.csv "${RAYS_HEADER}" mismatched 3
+                        bench rays room:3000 --quick --workgroup 32)
+clpath_bench_quick_test(scaling_quick ${CLI_OUT}/scaling.csv "${SCALING_HEADER}" mismatched 6 bench scaling --quick)
+clpath_cli_test(bench_rays_prints_agreement ARGS bench rays cornell --quick
+                OUTPUT "primary: 12288 rays .*100.0000 % identical hits, [0-9]+ ties, [0-9]+ at the origin, 0 mismatched")
+clpath_cli_test(bench_rays_width_not_tiled FAIL ARGS bench rays cornell --width 30 --height 32
+                OUTPUT "width and height must be positive multiples of 4")
+clpath_cli_test(bench_rays_bad_light FAIL ARGS bench rays cornell --quick --light 1,2 OUTPUT "--light '1,2': expected x,y,z")
+clpath_cli_test(bench_rays_bad_camera FAIL ARGS bench rays cornell --quick --camera 0,0,0,1,1,x
+                OUTPUT "--camera '0,0,0,1,1,x': 'x' is not a finite number")
+clpath_cli_test(bench_rays_unknown_scene FAIL ARGS bench rays no-such-scene --quick OUTPUT "no-such-scene")
+clpath_cli_test(bench_rays_bad_accel FAIL ARGS bench rays cornell --quick --accel kd OUTPUT "accel")
+clpath_cli_test(bench_rays_missing_csv_folder FAIL ARGS bench rays cornell --quick --csv ${CLI_OUT}/no/such/x.csv
+                OUTPUT "--csv .*folder .*no/such does not exist" FORBID ${CLI_OUT}/no/such/x.csv)
+clpath_cli_test(bench_rays_huge_workgroup FAIL ARGS bench rays cornell --quick --workgroup 65536
+                OUTPUT "work-group size 65536 exceeds")
+clpath_cli_test(bench_scaling_min_too_small FAIL ARGS bench scaling --min 10 OUTPUT "--min 10.*\\[100, 5e7\\]")
+clpath_cli_test(bench_scaling_min_over_max FAIL ARGS bench scaling --min 1000 --max 100
+                OUTPUT "--min 1000 is larger than --max 100")
+clpath_cli_test(bench_scaling_bad_accel FAIL ARGS bench scaling --accel kd OUTPUT "accel")
+clpath_cli_test(render_flat_accel ARGS render --spp 1 --width 40 --height 32 --accel flat -o ${CLI_OUT}/flat.pfm
+                OUTPUT "summary: .*triangles=196 .*nonfinite=0 accel=flat")
+clpath_cli_test(render_bad_accel FAIL ARGS render --spp 1 --accel kd OUTPUT "accel")
+clpath_scene_cli_test(render_closed_room ARGS render room:2000 --spp 1 --width 40 --height 32 -o ${CLI_OUT}/room.pfm
+                      OUTPUT "triangles=1994 .*loaded 'room-1994' from room:2000")

@@ -11,6 +11,8 @@ kernel void probe_struct_sizes(global uint* out) {
     out[6] = sizeof(AccumPixel);
     out[7] = sizeof(Light);
     out[8] = sizeof(AliasEntry);
+    out[9] = sizeof(BatchRay);
+    out[10] = sizeof(BatchHit);
 }
 
 /* out[i * n + j]: the j-th number of stream (pixel = i, sample = sample). */

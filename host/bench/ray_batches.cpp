@@ -1,0 +1,301 @@
+#include "bench/ray_batches.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <future>
+#include <thread>
+
+#include "bench/cpu_traversal.hpp"
+#include "cl/embedded_sources.hpp"
+#include "cl/program.hpp"
+#include "util/error.hpp"
+
+namespace clpath {
+namespace {
+
+constexpr std::size_t kSamplesPerPixel = 16;  // kernels/ray_batches.cl: a 4x4 grid
+
+// Indices of the rays checked: all, or `check` evenly spaced over the batch
+// (so every part of the image is represented).
+std::vector<std::size_t> checked_rays(std::size_t count, std::size_t check) {
+    std::vector<std::size_t> idx;
+    if (check == 0 || check >= count) {
+        idx.resize(count);
+        for (std::size_t i = 0; i < count; ++i) idx[i] = i;
+        return idx;
+    }
+    idx.reserve(check);
+    for (std::size_t i = 0; i < check; ++i) idx.push_back(i * count / check);
+    return idx;
+}
+
+// f(i) for every i in [0, n), split over the hardware threads.
+template <class F>
+void parallel_for(std::size_t n, F f) {
+    const std::size_t threads = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::future<void>> jobs;
+    for (std::size_t t = 0; t < threads; ++t)
+        jobs.push_back(std::async(std::launch::async, [&, t] {
+            for (std::size_t i = n * t / threads; i < n * (t + 1) / threads; ++i) f(i);
+        }));
+    for (auto& j : jobs) j.get();
+}
+
+std::string mismatch_report(std::size_t i, const BatchRay& r, std::int64_t dev_prim, double dev_t,
+                            std::int64_t cpu_prim, double cpu_t) {
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "ray %zu (from primary %u): o = (%.9g, %.9g, %.9g), d = (%.9g, %.9g, %.9g), tmax %.9g: device "
+                  "triangle %lld at t %.9g, CPU triangle %lld at t %.9g",
+                  i, r.src, r.o[0], r.o[1], r.o[2], r.d[0], r.d[1], r.d[2], r.tmax, (long long)dev_prim, dev_t,
+                  (long long)cpu_prim, cpu_t);
+    return buf;
+}
+
+BatchAgreement check_closest(const Bvh& reference, const std::vector<TriVerts>& device_tris,
+                             const std::vector<BatchRay>& rays, const std::vector<BatchHit>& hits, std::size_t check) {
+    const auto idx = checked_rays(rays.size(), check);
+    std::vector<CpuHit> cpu(idx.size());
+    parallel_for(idx.size(), [&](std::size_t k) { cpu[k] = cpu_closest_hit(reference, rays[idx[k]]); });
+    BatchAgreement a;
+    a.checked = idx.size();
+    for (std::size_t k = 0; k < idx.size(); ++k) {
+        const BatchHit& h = hits[idx[k]];
+        const std::int64_t prim = h.tri < 0 ? -1 : std::int64_t(device_tris[std::size_t(h.tri)].prim);
+        const CpuHit& c = cpu[k];
+        const BatchRay& r = rays[idx[k]];
+        // Float error in t grows with the coordinates' magnitude, not with t alone.
+        const double scale = c.t + std::max({std::abs(r.o[0]), std::abs(r.o[1]), std::abs(r.o[2])});
+        if (prim == c.prim) {
+            ++a.identical;
+            if (prim >= 0) a.max_dt = std::max(a.max_dt, std::abs(double(h.t) - c.t));
+        } else if (prim >= 0 && c.prim >= 0 && std::abs(double(h.t) - c.t) <= kTieTolerance * scale) {
+            ++a.ties;
+        } else if ((c.prim >= 0 && c.t <= kNearOrigin * scale) || (prim >= 0 && double(h.t) <= kNearOrigin * scale)) {
+            ++a.near_origin;
+        } else {
+            if (!a.mismatched++) a.first_mismatch = mismatch_report(idx[k], r, prim, h.t, c.prim, c.t);
+        }
+    }
+    return a;
+}
+
+BatchAgreement check_any(const Bvh& reference, const std::vector<BatchRay>& rays, const std::vector<int>& occluder,
+                         std::size_t check) {
+    const auto idx = checked_rays(rays.size(), check);
+    std::vector<char> cpu(idx.size());
+    parallel_for(idx.size(), [&](std::size_t k) { cpu[k] = cpu_any_hit(reference, rays[idx[k]]) >= 0; });
+    BatchAgreement a;
+    a.checked = idx.size();
+    for (std::size_t k = 0; k < idx.size(); ++k) {
+        const bool dev = occluder[idx[k]] >= 0;
+        const BatchRay& r = rays[idx[k]];
+        if (bool(cpu[k]) == dev) {
+            ++a.identical;
+            continue;
+        }
+        // Where the two differ, the exact closest occluder tells whether it sits at the origin.
+        const CpuHit c = cpu_closest_hit(reference, r);
+        const double scale = std::max({std::abs(r.o[0]), std::abs(r.o[1]), std::abs(r.o[2])});
+        if (c.prim >= 0 && c.t * std::sqrt(double(r.d[0]) * r.d[0] + double(r.d[1]) * r.d[1] + double(r.d[2]) * r.d[2]) <=
+                               kNearOrigin * scale) {
+            ++a.near_origin;
+        } else if (!a.mismatched++) {
+            a.first_mismatch = mismatch_report(idx[k], rays[idx[k]], dev ? 1 : -1, 0, cpu[k] ? 1 : -1, 0);
+        }
+    }
+    return a;
+}
+
+void finish_timing(BatchResult& b) {
+    b.best_ms = *std::min_element(b.launch_ms.begin(), b.launch_ms.end());
+    double sum = 0;
+    for (double ms : b.launch_ms) sum += ms;
+    b.mean_ms = sum / double(b.launch_ms.size());
+    b.mrays_per_s = b.mean_ms > 0 ? double(b.rays) / (b.mean_ms * 1e-3) * 1e-6 : 0;
+}
+
+}  // namespace
+
+const std::vector<std::string>& ray_batch_kernel_files() {
+    static const std::vector<std::string> files = {"rng.cl",      "sampling.cl", "camera.cl",
+                                                   "intersect.cl", "traverse.cl", "ray_batches.cl"};
+    return files;
+}
+
+std::string ray_batch_build_options(Accel accel) {
+    return accel == Accel::Flat ? "-cl-std=CL1.2 -DCLP_ACCEL_FLAT" : "-cl-std=CL1.2";
+}
+
+glm::vec3 default_bench_light(const Scene& scene) {
+    for (const auto& l : scene.lights)
+        if (l.type == PunctualLight::Type::Point) return l.position;
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const auto& v : scene.vertices) {
+        lo = glm::min(lo, v);
+        hi = glm::max(hi, v);
+    }
+    glm::vec3 sum(0);
+    double area = 0;
+    for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
+        if (!emits(scene.materials[scene.triangle_material[t]])) continue;
+        const glm::vec3 a = scene.vertices[3 * t], b = scene.vertices[3 * t + 1], c = scene.vertices[3 * t + 2];
+        const float w = 0.5f * glm::length(glm::cross(b - a, c - a));
+        sum += w * (a + b + c) / 3.0f;
+        area += w;
+    }
+    if (area > 0) return sum / float(area) - glm::vec3(0, 0.01f * (hi.y - lo.y), 0);
+    return {0.5f * (lo.x + hi.x), hi.y + 0.5f * (hi.y - lo.y), 0.5f * (lo.z + hi.z)};
+}
+
+RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOptions& o,
+                             const std::function<void(const std::string&)>& log) {
+    auto say = [&](const std::string& s) {
+        if (log) log(s);
+    };
+    if (o.width <= 0 || o.height <= 0 || o.width % 4 || o.height % 4)
+        throw Error("ray batches: width and height must be positive multiples of 4 (rays come in 4x4-pixel tiles), got " +
+                    std::to_string(o.width) + "x" + std::to_string(o.height));
+    if (o.launches < 1) throw Error("ray batches: at least one timed launch is needed");
+    if (scene.triangle_count() == 0) throw Error("scene '" + scene.name + "' has no triangles");
+    if (o.accel == Accel::Flat && scene.triangle_object.size() != scene.triangle_count())
+        throw Error("internal: scene '" + scene.name + "' has no object id for every triangle (needed by flat)");
+    if (o.workgroup > ctx.device().max_work_group)
+        throw Error("ray batches: work-group size " + std::to_string(o.workgroup) + " exceeds " + ctx.device().name +
+                    "'s limit of " + std::to_string(ctx.device().max_work_group));
+    Camera camera = scene.camera;
+    camera.width = o.width;
+    camera.height = o.height;
+    const CameraData cam = camera_data(camera);
+
+    RayBenchResult res;
+    res.scene = scene.name;
+    res.triangles = scene.triangle_count();
+    res.accel = o.accel;
+    res.light = o.light ? *o.light : default_bench_light(scene);
+    res.device = ctx.device().name;
+
+    const Bvh structure = build_accel(o.accel, scene.vertices, scene.triangle_object, o.bvh);
+    res.structure = structure.stats;
+    res.structure_bytes = structure.nodes.size() * sizeof(BvhNode) + structure.triangles.size() * sizeof(TriVerts);
+    // The CPU reference walks a BVH; for the flat structure it is a second
+    // structure, so the check also compares flat against BVH.
+    std::optional<Bvh> own_reference;
+    if (o.accel != Accel::Bvh) own_reference = build_bvh(scene.vertices, o.bvh);
+    const Bvh& reference = own_reference ? *own_reference : structure;
+    say(std::string(accel_name(o.accel)) + ": " + describe(structure.stats));
+
+    const std::size_t n = std::size_t(o.width) * std::size_t(o.height) * kSamplesPerPixel;
+    ctx.check_fits({{"acceleration nodes", structure.nodes.size() * sizeof(BvhNode)},
+                    {"triangles", structure.triangles.size() * sizeof(TriVerts)},
+                    {"primary rays", n * sizeof(BatchRay)},
+                    {"primary hits", n * sizeof(BatchHit)},
+                    {"secondary rays", n * sizeof(BatchRay)},
+                    {"secondary hits", n * sizeof(BatchHit)},
+                    {"hit list", n * sizeof(std::uint32_t)}});
+    Buffer nodes = ctx.buffer(structure.nodes.size() * sizeof(BvhNode), CL_MEM_READ_ONLY, "acceleration nodes",
+                              structure.nodes.data());
+    Buffer tris = ctx.buffer(structure.triangles.size() * sizeof(TriVerts), CL_MEM_READ_ONLY, "triangles",
+                             structure.triangles.data());
+    Buffer cam_buf = ctx.buffer(sizeof cam, CL_MEM_READ_ONLY, "camera", &cam);
+    Buffer primary = ctx.buffer(n * sizeof(BatchRay), CL_MEM_READ_WRITE, "primary rays");
+    Buffer primary_hits = ctx.buffer(n * sizeof(BatchHit), CL_MEM_READ_WRITE, "primary hits");
+    Buffer secondary = ctx.buffer(n * sizeof(BatchRay), CL_MEM_READ_WRITE, "secondary rays");
+    Buffer secondary_hits = ctx.buffer(n * sizeof(BatchHit), CL_MEM_READ_WRITE, "secondary hits");
+    Buffer src = ctx.buffer(n * sizeof(std::uint32_t), CL_MEM_READ_WRITE, "hit list");
+
+    BuildResult built = build_program(ctx, program_source(ray_batch_kernel_files()), ray_batch_build_options(o.accel));
+    say(std::string("kernels ") + (built.from_cache ? "loaded from cache" : "compiled") + " in " +
+        std::to_string(built.seconds) + " s");
+    Kernel make_primary = ctx.kernel(built.program.get(), "batch_primary_rays");
+    Kernel make_secondary = ctx.kernel(built.program.get(), "batch_secondary_rays");
+    Kernel closest = ctx.kernel(built.program.get(), "batch_trace_closest");
+    Kernel any = ctx.kernel(built.program.get(), "batch_trace_any");
+
+    // One warm-up launch, then the timed ones; every launch writes the same results.
+    auto time_batch = [&](BatchResult& b, Kernel& k) {
+        for (int l = 0; l <= o.launches; ++l) {
+            cl_event ev = ctx.launch(k, b.rays, o.workgroup, true);
+            const double s = ev ? event_seconds(ev) : 0.0;
+            if (l > 0) b.launch_ms.push_back(s * 1e3);
+        }
+        finish_timing(b);
+    };
+
+    make_primary.arg(0, cam_buf).arg(1, primary);
+    ctx.launch(make_primary, n, 0);
+    BatchResult prim;
+    prim.name = "primary";
+    prim.rays = n;
+    closest.arg(0, nodes).arg(1, tris).arg(2, primary).arg(3, primary_hits).arg(4, std::uint32_t(n));
+    say("primary: tracing " + std::to_string(n) + " rays");
+    time_batch(prim, closest);
+    std::vector<BatchRay> primary_rays(n);
+    std::vector<BatchHit> primary_result(n);
+    ctx.read(primary, primary_rays);
+    ctx.read(primary_hits, primary_result);
+    std::vector<std::uint32_t> hit_list;
+    for (std::size_t i = 0; i < n; ++i)
+        if (primary_result[i].tri >= 0) hit_list.push_back(std::uint32_t(i));
+    prim.hits = hit_list.size();
+    prim.agreement = check_closest(reference, structure.triangles, primary_rays, primary_result, o.check);
+    res.batches.push_back(prim);
+    if (!hit_list.empty()) ctx.write(src, hit_list.data(), hit_list.size() * sizeof(std::uint32_t));
+    const std::uint32_t m = std::uint32_t(hit_list.size());
+
+    auto make_rays = [&](std::uint32_t diffuse) {
+        make_secondary.arg(0, tris).arg(1, primary).arg(2, primary_hits).arg(3, src).arg(4, m);
+        make_secondary.arg(5, res.light.x).arg(6, res.light.y).arg(7, res.light.z).arg(8, diffuse).arg(9, o.seed);
+        make_secondary.arg(10, secondary);
+        ctx.launch(make_secondary, m, 0);
+    };
+
+    BatchResult shadow;
+    shadow.name = "shadow";
+    shadow.rays = m;
+    if (m > 0) {
+        make_rays(0);
+        any.arg(0, nodes).arg(1, tris).arg(2, secondary).arg(3, secondary_hits).arg(4, m);
+        say("shadow: tracing " + std::to_string(m) + " rays");
+        time_batch(shadow, any);
+        std::vector<BatchRay> rays(m);
+        std::vector<int> occluder(m);
+        ctx.read(secondary, rays);
+        ctx.read(secondary_hits, occluder.data(), m * sizeof(int));
+        for (int x : occluder) shadow.hits += x >= 0;
+        shadow.agreement = check_any(reference, rays, occluder, o.check);
+    }
+    res.batches.push_back(shadow);
+
+    BatchResult diffuse;
+    diffuse.name = "diffuse";
+    diffuse.rays = m;
+    if (m > 0) {
+        make_rays(1);
+        closest.arg(0, nodes).arg(1, tris).arg(2, secondary).arg(3, secondary_hits).arg(4, m);
+        say("diffuse: tracing " + std::to_string(m) + " rays");
+        time_batch(diffuse, closest);
+        std::vector<BatchRay> rays(m);
+        std::vector<BatchHit> hits(m);
+        ctx.read(secondary, rays);
+        ctx.read(secondary_hits, hits);
+        for (const auto& h : hits) diffuse.hits += h.tri >= 0;
+        diffuse.agreement = check_closest(reference, structure.triangles, rays, hits, o.check);
+    }
+    res.batches.push_back(diffuse);
+    return res;
+}
+
+std::string describe(const BatchResult& b) {
+    char buf[512];
+    const BatchAgreement& a = b.agreement;
+    std::snprintf(buf, sizeof buf,
+                  "%s: %zu rays (%zu hit), kernel %.3f ms mean / %.3f ms best, %.2f Mrays/s; CPU check: %zu rays, "
+                  "%.4f %% identical hits, %zu ties, %zu at the origin, %zu mismatched, max |dt| %.2g",
+                  b.name.c_str(), b.rays, b.hits, b.mean_ms, b.best_ms, b.mrays_per_s, a.checked,
+                  a.identical_percent(), a.ties, a.near_origin, a.mismatched, a.max_dt);
+    return a.first_mismatch.empty() ? std::string(buf) : std::string(buf) + "\n  first mismatch: " + a.first_mismatch;
+}
+
+}  // namespace clpath

@@ -1,0 +1,102 @@
+#pragma once
+// The ray-batch traversal benchmark (clpath bench rays; issue 6), made to be
+// comparable with published GPU traversal tests (tinybvh's, see ROADMAP.md):
+// width x height pixels x 16 samples on a 4x4 sub-pixel grid, rays ordered in
+// 4x4-pixel tiles; a batch of primary rays (closest hit), of shadow rays from
+// the primary hits to a point light (any hit) and of cosine-distributed
+// diffuse rays from the primary hits (closest hit). Each batch: one warm-up
+// and N timed launches, timed by OpenCL profiling events; every batch is
+// checked against a CPU reference traversal (bench/cpu_traversal.hpp).
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bvh/accel.hpp"
+#include "cl/context.hpp"
+#include "scene/scene.hpp"
+
+namespace clpath {
+
+struct RayBenchOptions {
+    int width = 480, height = 320;  // multiples of 4
+    int launches = 5;               // timed launches per batch, after one warm-up
+    std::size_t workgroup = 64;     // work-items per group; 0: the driver chooses
+    Accel accel = Accel::Bvh;
+    std::optional<glm::vec3> light;  // default: default_bench_light(scene)
+    std::size_t check = std::size_t(1) << 18;  // rays per batch checked on the CPU (evenly spaced); 0: all
+    std::uint32_t seed = 0;                    // diffuse directions
+    BvhBuildOptions bvh;
+};
+
+// How a batch's device results compare with the CPU reference.
+struct BatchAgreement {
+    std::size_t checked = 0;
+    std::size_t identical = 0;   // same triangle (or both miss; for any-hit: same occluded flag)
+    std::size_t ties = 0;        // closest hit: another triangle at the same distance (see kTieTolerance)
+    std::size_t near_origin = 0; // one side's hit lies within kNearOrigin of the ray's origin (see there)
+    std::size_t mismatched = 0;  // none of these
+    double max_dt = 0;           // largest |t_device - t_cpu| over identical hits (scene units, |d| = 1 for closest-hit batches)
+    std::string first_mismatch;  // the first mismatched ray, for a report: index, origin, direction, both answers
+    double identical_percent() const { return checked ? 100.0 * double(identical) / double(checked) : 100.0; }
+    bool agrees() const { return mismatched == 0; }
+};
+
+// A tie is two triangles whose distances differ by at most this times
+// (t + the largest origin coordinate), the magnitude float rounding of t
+// scales with: far above the float test's rounding error (a few gamma(7) ~
+// 1e-6 relative, PBR 4th ed. 6.8), far below the gap between two surfaces
+// of the scenes measured.
+constexpr double kTieTolerance = 1e-5;
+
+// A secondary ray that leaves a surface right next to another (a corner) can
+// meet that other surface within the rounding-error bound the device's
+// triangle test puts on t (PBR 4th ed. 6.8.3: about 2e-5 at unit scale); the
+// device then rejects the hit as possibly behind the origin, the exact CPU
+// test accepts it. Such differences (hit distance below kNearOrigin times
+// the scale above) are counted apart from mismatches.
+constexpr double kNearOrigin = 1e-4;
+
+struct BatchResult {
+    std::string name;  // primary, shadow, diffuse
+    std::size_t rays = 0, hits = 0;
+    std::vector<double> launch_ms;  // each timed launch's kernel time
+    double best_ms = 0, mean_ms = 0;
+    double mrays_per_s = 0;  // rays / mean kernel time
+    BatchAgreement agreement;
+};
+
+struct RayBenchResult {
+    std::string scene;
+    std::size_t triangles = 0;
+    Accel accel = Accel::Bvh;
+    BvhStats structure;  // of the structure traversed
+    std::size_t structure_bytes = 0;  // nodes + triangles on the device
+    glm::vec3 light{0};
+    std::string device;
+    std::vector<BatchResult> batches;  // primary, shadow, diffuse
+};
+
+// The batch kernels' program: these files (program_source) with these options.
+const std::vector<std::string>& ray_batch_kernel_files();
+std::string ray_batch_build_options(Accel accel);
+
+// The point light a scene is benchmarked with when none is given: its first
+// point light; else just below the area-weighted centre of its emitters (a
+// ceiling lamp); else above the middle of its bounding box.
+glm::vec3 default_bench_light(const Scene& scene);
+
+// Runs the three batches on ctx's device for scene.camera (width and height
+// from options). log (may be empty) hears progress lines. Throws clpath::Error
+// for bad options or a scene too large for the device.
+RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOptions& options,
+                             const std::function<void(const std::string&)>& log = {});
+
+// "primary: 2457600 rays (786432 hit), 12.3 ms, 199.8 Mrays/s; CPU check: 262144 rays, 100.000 % identical, ..."
+std::string describe(const BatchResult& batch);
+
+}  // namespace clpath

@@ -1,0 +1,59 @@
+#pragma once
+// The triangle-count scaling benchmark (clpath bench scaling; issue 6): the
+// generated scaling scenes (scaling:N, the same room around one bumpy sphere
+// whose size on screen stays fixed) from min to max triangles in 1-3-10
+// steps. Per size and structure: generation time, build time and Mtris/s,
+// SAH cost, node count, device bytes per triangle, Mrays/s of the three ray
+// batches (bench/ray_batches.hpp, at a small resolution) and path samples/s.
+// The flat structure runs until its predicted time for the next size passes
+// the time cap; sizes that would not fit in memory are skipped and say why.
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bvh/accel.hpp"
+#include "cl/context.hpp"
+
+namespace clpath {
+
+struct ScalingOptions {
+    std::size_t min = 100, max = 10'000'000;
+    bool bvh = true, flat = true;
+    double time_cap_s = 60;           // flat: stop once the next size is predicted to take longer
+    int ray_width = 96, ray_height = 64;  // ray batches (x 16 samples)
+    int launches = 3;
+    std::size_t check = 4096;         // rays per batch checked on the CPU
+    int path_width = 64, path_height = 48;
+    std::uint32_t path_spp = 2;
+    // Host memory the benchmark may use; a size whose estimate exceeds it is
+    // skipped. 0: 80 % of MemAvailable (/proc/meminfo).
+    double memory_budget_bytes = 0;
+};
+
+struct ScalingRow {
+    std::size_t requested = 0, triangles = 0;
+    Accel accel = Accel::Bvh;
+    std::string skipped;  // why this size was not measured; empty when it was
+    double generate_ms = 0, build_ms = 0, mtris_per_s = 0, sah_cost = 0;
+    std::size_t nodes = 0;
+    double bytes_per_triangle = 0;  // device nodes + triangle records
+    double primary_mrays = 0, shadow_mrays = 0, diffuse_mrays = 0;
+    double msamples_per_s = 0;       // path integrator, default settings
+    std::size_t checked = 0, mismatched = 0;  // CPU check over the three batches
+    double seconds = 0;              // wall time this row took
+};
+
+// The sizes: min, then 1-3-10 steps per decade, up to max.
+std::vector<std::size_t> scaling_sizes(std::size_t min, std::size_t max);
+
+// Host bytes a size is estimated to need at its peak (scene, builder, device copies on a CPU device).
+double scaling_memory_estimate(std::size_t triangles);
+
+std::vector<ScalingRow> run_scaling(Context& ctx, const ScalingOptions& options,
+                                    const std::function<void(const std::string&)>& log = {});
+
+std::string scaling_csv(const std::vector<ScalingRow>& rows, const std::string& device);
+std::string scaling_markdown(const std::vector<ScalingRow>& rows, const std::string& device);
+
+}  // namespace clpath

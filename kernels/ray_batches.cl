@@ -1,0 +1,99 @@
+/* The ray-batch benchmark (clpath bench rays, host/bench/ray_batches.cpp):
+ * kernels that make the rays (not timed) and kernels that trace a batch
+ * (timed), one ray per work-item, through the same traverse_bvh() the
+ * integrator uses (the BVH, or the flat list with -DCLP_ACCEL_FLAT).
+ * Files before this one: rng.cl, sampling.cl, camera.cl, intersect.cl, traverse.cl. */
+
+#define CLP_BATCH_TILE 4    /* pixels are ordered in 4x4-pixel tiles */
+#define CLP_BATCH_GRID 4    /* 4x4 samples per pixel, at the centres of a sub-pixel grid */
+
+/* Primary ray i: tile, then pixel in the tile, then sample in the pixel, so
+ * neighbouring work-items trace neighbouring rays. width and height are
+ * multiples of CLP_BATCH_TILE (the host checks). */
+kernel void batch_primary_rays(constant const CameraData* cam, global BatchRay* out) {
+    uint i = get_global_id(0);
+    uint spp = CLP_BATCH_GRID * CLP_BATCH_GRID, tile_px = CLP_BATCH_TILE * CLP_BATCH_TILE;
+    uint count = cam->width * cam->height * spp;
+    if (i >= count) return;
+    uint s = i % spp, p = (i / spp) % tile_px, tile = i / (spp * tile_px);
+    uint tiles_x = cam->width / CLP_BATCH_TILE;
+    uint px = (tile % tiles_x) * CLP_BATCH_TILE + p % CLP_BATCH_TILE;
+    uint py = (tile / tiles_x) * CLP_BATCH_TILE + p / CLP_BATCH_TILE;
+    float jx = ((float)(s % CLP_BATCH_GRID) + 0.5f) / (float)CLP_BATCH_GRID;
+    float jy = ((float)(s / CLP_BATCH_GRID) + 0.5f) / (float)CLP_BATCH_GRID;
+    Ray r = camera_ray(cam, px, py, jx, jy);
+    global BatchRay* o = &out[i];
+    o->o[0] = r.o.x, o->o[1] = r.o.y, o->o[2] = r.o.z;
+    o->d[0] = r.d.x, o->d[1] = r.d.y, o->d[2] = r.d.z;
+    o->tmax = INFINITY;
+    o->src = i;
+}
+
+/* The surface point a primary hit found, with its rounding-error bound and
+ * its geometric normal turned towards the ray's side. */
+inline float3 batch_hit_point(global const TriVerts* tris, const BatchRay* r, BatchHit h, float3* err, float3* n) {
+    global const TriVerts* tv = &tris[h.tri];
+    float3 v0 = load3g(tv->v0), v1 = load3g(tv->v1), v2 = load3g(tv->v2);
+    float3 ng = normalize(cross(v1 - v0, v2 - v0));
+    *n = dot(ng, load3(r->d)) < 0.0f ? ng : -ng;
+    return hit_point(v0, v1, v2, h.b1, h.b2, err);
+}
+
+/* Secondary ray i starts at the hit of primary ray src[i] (the host lists the
+ * primaries that hit). Shadow: towards the point light, tmax 1 = the light.
+ * Diffuse: cosine-distributed about the normal on the ray's side, unbounded.
+ * Origins are offset as the integrator's (offset_ray_origin). */
+kernel void batch_secondary_rays(global const TriVerts* tris, global const BatchRay* primary,
+                                 global const BatchHit* hits, global const uint* src, uint count, float lx, float ly,
+                                 float lz, uint diffuse, uint seed, global BatchRay* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    uint k = src[i];
+    BatchRay pr = primary[k];
+    float3 err, n;
+    float3 p = batch_hit_point(tris, &pr, hits[k], &err, &n);
+    float3 w, o;
+    float tmax;
+    if (diffuse) {
+        Rng rng = rng_seed(k, 1u, seed);
+        float u1 = rng_next(&rng), u2 = rng_next(&rng);
+        w = to_world(sample_cosine_hemisphere(u1, u2), n);
+        o = offset_ray_origin(p, err, n, w);
+        tmax = INFINITY;
+    } else {
+        float3 light = (float3)(lx, ly, lz);
+        o = offset_ray_origin(p, err, n, light - p);
+        w = light - o;
+        tmax = 1.0f;
+    }
+    global BatchRay* r = &out[i];
+    r->o[0] = o.x, r->o[1] = o.y, r->o[2] = o.z;
+    r->d[0] = w.x, r->d[1] = w.y, r->d[2] = w.z;
+    r->tmax = tmax;
+    r->src = k;
+}
+
+/* The timed kernels: closest hit, and any hit (shadow rays). */
+kernel void batch_trace_closest(global const BvhNode* nodes, global const TriVerts* tris,
+                                global const BatchRay* rays, global BatchHit* hits, uint count) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    global const BatchRay* r = &rays[i];
+    RayPre rp = ray_prepare(load3g(r->o), load3g(r->d));
+    Hit h = traverse_bvh(nodes, tris, &rp, r->tmax, 0, 0);
+    BatchHit out;
+    out.t = h.t;
+    out.b1 = h.b1;
+    out.b2 = h.b2;
+    out.tri = h.tri;
+    hits[i] = out;
+}
+
+kernel void batch_trace_any(global const BvhNode* nodes, global const TriVerts* tris, global const BatchRay* rays,
+                            global int* occluder, uint count) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    global const BatchRay* r = &rays[i];
+    RayPre rp = ray_prepare(load3g(r->o), load3g(r->d));
+    occluder[i] = traverse_bvh(nodes, tris, &rp, r->tmax, 1, 0).tri;
+}
