@@ -20,6 +20,7 @@ struct KernelFeatures {
     bool environment = false;      // rays that leave the scene see an environment
     bool environment_map = false;  // ... given by an image
     bool normals = false;          // interpolated shading normals
+    bool uniform_hemisphere = false;  // diffuse bounces sample the hemisphere uniformly
     std::uint32_t integrator = CLP_INTEGRATOR_PATH;
     std::uint32_t max_depth = 16;
 
