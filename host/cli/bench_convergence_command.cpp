@@ -1,8 +1,8 @@
 // clpath bench convergence SCENE --reference REF: how fast each estimator
 // configuration's error against a reference falls, in samples and in seconds.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <memory>
 #include <set>
 #include <string>
