@@ -13,6 +13,7 @@
 # references/agreement.txt.
 #
 # Usage: benchmarks/references/make_references.sh [BUILD_DIR] [CYCLES_SPP] [CLPATH_SPP]
+# (CLPATH_CHECK_SPP=N: the clpath renders of the agreement check, default 1024)
 # Blender (Debian's `blender`, 3.4) is installed with apt when missing; CI
 # does not need it: the small references are committed.
 set -euo pipefail
@@ -41,17 +42,27 @@ cycles "$root/scenes/cornell-thesis-diffuse.json" 160 128
   -o "$work/cornell-thesis-clpath.exr"
 mv "$work/cornell-thesis-clpath.exr" "$here/cornell-thesis-clpath.exr"
 
-# clpath against Cycles: a clpath render at the same size and sample count.
+# clpath against Cycles. Two clpath renders with different seeds give the
+# noise alone: with per-sample variances s2 (clpath) and c2 (Cycles), the
+# clpath-clpath MSE is 2 s2/N and the clpath-Cycles one s2/N + c2/CYCLES_SPP +
+# bias^2, so agreement means the second is about (1/2 + N c2 / (2 s2 CYCLES_SPP))
+# times the first, and no channel mean differs by much more than its noise.
+N=${CLPATH_CHECK_SPP:-1024}
 {
   echo "date: $(date -u +%FT%TZ)  commit: $(git -C "$root" rev-parse --short HEAD)  blender: $(blender --version | head -1)"
-  "$clpath" devices | sed -n 2p
+  "$clpath" devices | sed -n 2p | sed 's/^ *//'
   for s in cornell-classic:128:128 cornell-thesis-diffuse:160:128; do
     IFS=: read -r name w h <<<"$s"
-    "$clpath" render "$root/scenes/$name.json" --width "$w" --height "$h" --spp "$CYCLES_SPP" --seed 2000 -q \
-      -o "$work/$name-clpath.exr"
-    echo "== $name: clpath ($CYCLES_SPP spp, path) against Cycles ($CYCLES_SPP spp)"
-    "$clpath" compare "$work/$name-clpath.exr" "$here/$name-cycles.exr"
-    echo "   without the directly seen lamp (reference > 0.8, grown by 1 pixel):"
-    "$clpath" compare "$work/$name-clpath.exr" "$here/$name-cycles.exr" --mask-above 0.8 --mask-grow 1
+    for seed in 2000 3000; do
+      "$clpath" render "$root/scenes/$name.json" --width "$w" --height "$h" --spp "$N" --seed "$seed" -q \
+        -o "$work/$name-clpath-$seed.exr" > /dev/null
+    done
+    for mask in "" "--mask-above 0.8 --mask-grow 1"; do
+      echo "== $name ${mask:+(lamp left out: $mask)}"
+      echo -n "clpath $N spp vs clpath $N spp, other seed: "
+      "$clpath" compare "$work/$name-clpath-2000.exr" "$work/$name-clpath-3000.exr" $mask
+      echo -n "clpath $N spp vs Cycles $CYCLES_SPP spp:         "
+      "$clpath" compare "$work/$name-clpath-2000.exr" "$here/$name-cycles.exr" $mask
+    done
   done
 } | tee "$here/agreement.txt"
