@@ -229,7 +229,7 @@ inline float3 material_eval(global const Material* m, float3 ng, float3 ns, floa
     switch (m->kind) {
 #ifdef CLP_HAS_MAT_DIFFUSE
     case CLP_MAT_DIFFUSE:
-        *pdf = cosine_hemisphere_pdf(wi.z);
+        *pdf = diffuse_hemisphere_pdf(wi.z);
         return load3g(m->albedo) * (wi.z * CLP_INV_PI);
 #endif
 #ifdef CLP_HAS_MAT_CONDUCTOR
@@ -256,11 +256,16 @@ inline int material_sample(global const Material* m, float3 ng, float3 ns, float
     switch (m->kind) {
 #ifdef CLP_HAS_MAT_DIFFUSE
     case CLP_MAT_DIFFUSE: {
-        /* Lambert sampled by cos theta / pi: the weight is the albedo exactly. */
-        float3 wi = sample_cosine_hemisphere(u1, u2);
+        float3 wi = sample_diffuse_hemisphere(u1, u2);
         s->wi = from_local(&f, wi);
-        s->pdf = cosine_hemisphere_pdf(wi.z);
+        s->pdf = diffuse_hemisphere_pdf(wi.z);
+#ifdef CLP_UNIFORM_HEMISPHERE
+        /* f cos / pdf = (albedo / pi) cos theta * 2 pi. */
+        s->weight = load3g(m->albedo) * (2.0f * wi.z);
+#else
+        /* Lambert sampled by cos theta / pi: the weight is the albedo exactly. */
         s->weight = load3g(m->albedo);
+#endif
         break;
     }
 #endif

@@ -47,6 +47,28 @@ inline float3 sample_uniform_hemisphere(float u1, float u2) {
     return (float3)(r * cos(phi), r * sin(phi), z);
 }
 
+inline float uniform_hemisphere_pdf(float cos_theta) { return cos_theta > 0.0f ? 0.5f * CLP_INV_PI : 0.0f; }
+
+/* The direction a diffuse bounce takes about +z, and its pdf: cosine-weighted
+ * by default; uniform with -DCLP_UNIFORM_HEMISPHERE (the thesis text's choice,
+ * kept so that the convergence benchmark can measure what cosine weighting
+ * gains). Sample and pdf are chosen together here, so they cannot disagree. */
+inline float3 sample_diffuse_hemisphere(float u1, float u2) {
+#ifdef CLP_UNIFORM_HEMISPHERE
+    return sample_uniform_hemisphere(u1, u2);
+#else
+    return sample_cosine_hemisphere(u1, u2);
+#endif
+}
+
+inline float diffuse_hemisphere_pdf(float cos_theta) {
+#ifdef CLP_UNIFORM_HEMISPHERE
+    return uniform_hemisphere_pdf(cos_theta);
+#else
+    return cosine_hemisphere_pdf(cos_theta);
+#endif
+}
+
 inline float3 to_world(float3 v, float3 n) {
     float3 t, b;
     make_frame(n, &t, &b);

@@ -26,6 +26,9 @@ Command add_compare_command(CLI::App& app) {
     cmd->add_option("--mask-above", o->options.mask_above,
                     "Leave out pixels where the reference exceeds V in any channel (directly seen emitters)")
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--mask-grow", o->options.mask_grow,
+                    "Also leave out pixels within N pixels of a masked one (an emitter's partly covered edge)")
+        ->check(CLI::Range(0, 64));
     return [o] {
         const ImageComparison c = compare_images(read_image(o->a), read_image(o->b), o->options);
         std::printf("%s\n", describe(c).c_str());

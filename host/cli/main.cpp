@@ -1,4 +1,4 @@
-// clpath: an OpenCL Monte Carlo path tracer. Subcommands: render, devices, compare, bench (and view with the viewer built in).
+// clpath: an OpenCL Monte Carlo path tracer. Subcommands: render, devices, compare, bench, export (and view with the viewer built in).
 #include <cstdio>
 #include <map>
 
@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
     add(clpath::add_compare_command);
     add(clpath::add_view_command);
     add(clpath::add_bench_command);
+    add(clpath::add_export_command);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -26,6 +26,7 @@ struct RenderOptions {
     std::optional<std::uint32_t> max_depth, seed;
     std::uint32_t rr_min_depth = 3;
     std::optional<std::string> rr, integrator;
+    std::string hemisphere = "cosine";
     std::optional<float> ao_distance;
     bool all_features = false;
     int width = 0, height = 0;
@@ -53,6 +54,7 @@ int run_render(const RenderOptions& o) {
     if (o.ao_distance) scene.render.ao_distance = *o.ao_distance;
     RenderSettings settings = settings_from_scene(scene.render);
     settings.rr_min_depth = o.rr_min_depth;
+    settings.hemisphere = parse_hemisphere(o.hemisphere);
     settings.all_features = o.all_features;
     settings.bvh.max_leaf_size = o.leaf_size;
     settings.bvh.bins = o.bins;
@@ -148,6 +150,10 @@ Command add_render_command(CLI::App& app) {
     cmd->add_option("--integrator,-i", o->integrator, "Integrator: path (default: NEE + MIS), path-bsdf, ao, "
                     "or a debug view: normals, depth, albedo, heatmap")
         ->check(CLI::IsMember(integrator_names()));
+    cmd->add_option("--hemisphere", o->hemisphere,
+                    "Diffuse bounces: cosine (default, cos/pi-weighted) or uniform (the thesis text's estimator)")
+        ->check(CLI::IsMember(hemisphere_names()))
+        ->capture_default_str();
     cmd->add_option("--ao-distance", o->ao_distance, "Ambient occlusion ray length (default: 1/10 of the scene size)")
         ->check(CLI::PositiveNumber);
     cmd->add_flag("--all-features", o->all_features,

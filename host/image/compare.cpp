@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <vector>
 
 #include "util/error.hpp"
 
@@ -18,11 +19,19 @@ ImageComparison compare_images(const Image& a, const Image& b, const CompareOpti
     // Sums in double: a 4K image has 2.5e7 terms.
     double se = 0, rel = 0;
     std::array<double, 3> sa{}, sb{};
+    std::vector<char> masked(std::size_t(a.width) * a.height, 0);
+    if (o.mask_above > 0)
+        for (int y = 0; y < a.height; ++y)
+            for (int x = 0; x < a.width; ++x) {
+                if (!(std::max({b.at(x, y, 0), b.at(x, y, 1), b.at(x, y, 2)}) > o.mask_above)) continue;
+                const int g = std::max(0, o.mask_grow);
+                for (int j = std::max(0, y - g); j <= std::min(a.height - 1, y + g); ++j)
+                    for (int i = std::max(0, x - g); i <= std::min(a.width - 1, x + g); ++i)
+                        masked[std::size_t(j) * a.width + i] = 1;
+            }
     for (int y = 0; y < a.height; ++y)
         for (int x = 0; x < a.width; ++x) {
-            if (o.mask_above > 0 &&
-                std::max({b.at(x, y, 0), b.at(x, y, 1), b.at(x, y, 2)}) > o.mask_above)
-                continue;
+            if (masked[std::size_t(y) * a.width + x]) continue;
             ++c.pixels;
             for (int ch = 0; ch < 3; ++ch) {
                 const double va = clamp(a.at(x, y, ch)), vb = clamp(b.at(x, y, ch));

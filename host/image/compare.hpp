@@ -14,6 +14,10 @@ struct CompareOptions {
     float clamp = 0;
     // Leave out pixels whose reference value (any channel) exceeds this (0: keep all).
     float mask_above = 0;
+    // Also leave out pixels within this many pixels (in x and y) of one the
+    // mask leaves out: the edges of an emitter, where pixels partly covered by
+    // it are far noisier than any other and yet below the threshold.
+    int mask_grow = 0;
 };
 
 struct ImageComparison {

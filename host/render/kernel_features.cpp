@@ -37,10 +37,13 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
     f.flat_accel = settings.accel == Accel::Flat;
     const bool path = settings.integrator == CLP_INTEGRATOR_PATH;
     const bool light_transport = path || settings.integrator == CLP_INTEGRATOR_PATH_BSDF;
+    // A choice of estimator, not of scene: it stays a choice with every feature compiled in.
+    const bool uniform = light_transport && settings.hemisphere == kHemisphereUniform;
     if (settings.all_features) {
         f.materials.fill(true);
         f.emission = f.environment = f.environment_map = f.normals = true;
         f.triangle_lights = f.delta_lights = path;
+        f.uniform_hemisphere = uniform;
         return f;
     }
     f.materials = scene.materials;
@@ -50,6 +53,7 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
     f.environment = light_transport && scene.environment;
     f.environment_map = f.environment && scene.environment_map;
     f.normals = scene.normals;
+    f.uniform_hemisphere = uniform && scene.materials[CLP_MAT_DIFFUSE];  // no diffuse surface: nothing to change
     return f;
 }
 
@@ -64,6 +68,7 @@ std::string build_options(const KernelFeatures& f) {
     if (f.environment_map) o += " -DCLP_HAS_ENV_MAP";
     if (f.normals) o += " -DCLP_HAS_NORMALS";
     if (f.flat_accel) o += " -DCLP_ACCEL_FLAT";
+    if (f.uniform_hemisphere) o += " -DCLP_UNIFORM_HEMISPHERE";
     o += " -DCLP_INTEGRATOR=" + std::to_string(f.integrator) + "u";
     o += " -DCLP_MAX_DEPTH=" + std::to_string(f.max_depth) + "u";
     return o;
@@ -82,6 +87,7 @@ std::string describe(const KernelFeatures& f) {
     add(f.environment_map, "environment-map");
     add(f.normals, "normals");
     add(f.flat_accel, "flat-accel");
+    add(f.uniform_hemisphere, "uniform-hemisphere");
     return s;
 }
 

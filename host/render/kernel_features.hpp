@@ -21,6 +21,7 @@ struct KernelFeatures {
     bool environment_map = false;  // ... given by an image
     bool normals = false;          // interpolated shading normals
     bool flat_accel = false;       // traverse the flat list of object boxes, not the BVH (CLP_ACCEL_FLAT)
+    bool uniform_hemisphere = false;  // diffuse bounces sample the hemisphere uniformly
     std::uint32_t integrator = CLP_INTEGRATOR_PATH;
     std::uint32_t max_depth = 16;
 

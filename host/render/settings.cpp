@@ -25,12 +25,21 @@ const std::vector<std::string>& rr_rule_names() {
     return names;
 }
 
+const std::vector<std::string>& hemisphere_names() {
+    static const std::vector<std::string> names{"cosine", "uniform"};  // kHemisphere*
+    return names;
+}
+
 std::uint32_t parse_integrator(const std::string& name) { return find_name(integrator_names(), name, "integrator"); }
 std::uint32_t parse_rr_rule(const std::string& name) {
     return find_name(rr_rule_names(), name, "Russian roulette rule");
 }
+std::uint32_t parse_hemisphere(const std::string& name) {
+    return find_name(hemisphere_names(), name, "hemisphere sampling");
+}
 const char* integrator_name(std::uint32_t i) { return integrator_names().at(i).c_str(); }
 const char* rr_rule_name(std::uint32_t r) { return rr_rule_names().at(r).c_str(); }
+const char* hemisphere_name(std::uint32_t h) { return hemisphere_names().at(h).c_str(); }
 
 RenderSettings settings_from_scene(const SceneRenderDefaults& d) {
     RenderSettings s;

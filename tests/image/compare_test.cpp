@@ -70,3 +70,18 @@ TEST(Compare, NanDifferenceIsReportedAsLargest) {
     EXPECT_TRUE(std::isnan(c.max_abs_diff));
     EXPECT_EQ(c.max_x, 1);
 }
+
+// The grown mask covers the emitter's neighbours (partly covered edge pixels)
+// and nothing farther away.
+TEST(Compare, MaskGrowsAroundMaskedPixels) {
+    Image a = constant(5, 1, 0.5f), b = constant(5, 1, 0.5f);
+    b.rgb[2 * 3] = 10.0f;  // pixel 2: an emitter in the reference
+    a.rgb[1 * 3] = 0.9f;   // pixel 1: its noisy neighbour
+    a.rgb[4 * 3] = 0.7f;   // pixel 4: two away
+    CompareOptions o;
+    o.mask_above = 5.0f;
+    o.mask_grow = 1;
+    const ImageComparison c = compare_images(a, b, o);
+    EXPECT_EQ(c.pixels, 2u);  // pixels 0 and 4
+    EXPECT_NEAR(c.mse, 0.2 * 0.2 / 6, 1e-7);
+}

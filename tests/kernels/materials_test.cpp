@@ -23,23 +23,32 @@ struct Samples {
     std::vector<cl_float4> wi_pdf, weight;
 };
 
-Samples sample(const Material& m, glm::vec3 wo, std::uint32_t n, std::uint32_t seed = 7) {
+// The renderer's kernels with uniform hemisphere sampling for diffuse bounces.
+cl_program uniform_hemisphere_program() {
+    RenderSettings s;
+    s.hemisphere = kHemisphereUniform;
+    return test::probe_program(s);
+}
+
+Samples sample(const Material& m, glm::vec3 wo, std::uint32_t n, std::uint32_t seed = 7,
+               cl_program program = test::probe_program()) {
     Buffer mb = test::upload(std::vector<Material>{m}, "material");
     Buffer a = test::device().buffer(n * sizeof(cl_float4), CL_MEM_READ_WRITE, "wi");
     Buffer b = test::device().buffer(n * sizeof(cl_float4), CL_MEM_READ_WRITE, "weight");
-    Kernel k = test::device().kernel(test::probe_program(), "probe_bsdf_sample");
+    Kernel k = test::device().kernel(program, "probe_bsdf_sample");
     k.arg(0, mb).arg(1, wo.x).arg(2, wo.y).arg(3, wo.z).arg(4, n).arg(5, seed).arg(6, a).arg(7, b);
     test::run(k, n);
     return {test::download<cl_float4>(a, n), test::download<cl_float4>(b, n)};
 }
 
 // (f cos, pdf) for each pair.
-std::vector<cl_float4> eval(const Material& m, const std::vector<cl_float4>& wo, const std::vector<cl_float4>& wi) {
+std::vector<cl_float4> eval(const Material& m, const std::vector<cl_float4>& wo, const std::vector<cl_float4>& wi,
+                            cl_program program = test::probe_program()) {
     const auto n = std::uint32_t(wo.size());
     Buffer mb = test::upload(std::vector<Material>{m}, "material");
     Buffer a = test::upload(wo), b = test::upload(wi);
     Buffer out = test::device().buffer(n * sizeof(cl_float4), CL_MEM_READ_WRITE, "eval");
-    Kernel k = test::device().kernel(test::probe_program(), "probe_bsdf_eval");
+    Kernel k = test::device().kernel(program, "probe_bsdf_eval");
     k.arg(0, mb).arg(1, n).arg(2, a).arg(3, b).arg(4, out);
     test::run(k, n);
     return test::download<cl_float4>(out, n);
@@ -60,12 +69,13 @@ glm::vec3 from_angle(double theta_deg) {
 // hemisphere; with `sphere`, transmitting ones over the whole sphere, on a
 // finer sub-grid: refraction compresses the transmitted lobe, and the
 // midpoint rule on the coarser grid mis-integrates it.
-void chi_square_test(const Material& m, double theta_deg, double alpha, bool sphere = false) {
+void chi_square_test(const Material& m, double theta_deg, double alpha, bool sphere = false,
+                     cl_program program = test::probe_program()) {
     const int nt = sphere ? 40 : 20, nphi = 40, sub = sphere ? 16 : 8;
     const double theta_max = sphere ? kPi : kPi / 2;
     const std::uint32_t n = 200000;
     const glm::vec3 wo = from_angle(theta_deg);
-    const Samples s = sample(m, wo, n);
+    const Samples s = sample(m, wo, n, 7, program);
     std::vector<double> observed(nt * nphi + 1, 0.0);
     for (const auto& w : s.wi_pdf) {
         if (w.s[3] < 0) {
@@ -93,7 +103,7 @@ void chi_square_test(const Material& m, double theta_deg, double alpha, bool sph
                                        float(std::cos(theta)))));
             area.push_back(std::sin(theta) * dt * dp);
         }
-    const auto e = eval(m, wos, wis);
+    const auto e = eval(m, wos, wis, program);
     std::vector<double> expected(nt * nphi + 1, 0.0);
     double total = 0;
     for (int it = 0; it < nt * sub; ++it)
@@ -108,13 +118,33 @@ void chi_square_test(const Material& m, double theta_deg, double alpha, bool sph
     EXPECT_GT(c.p_value, alpha) << "chi2 " << c.statistic << " dof " << c.dof << " at theta " << theta_deg;
 }
 
-// The sub-grid integration itself has an error; 16 tests share alpha = 1e-3 (Sidak).
-const double kAlpha = 1 - std::pow(1 - 1e-3, 1.0 / 16);
+// The sub-grid integration itself has an error; 18 tests share alpha = 1e-3 (Sidak).
+const double kAlpha = 1 - std::pow(1 - 1e-3, 1.0 / 18);
 
 }  // namespace
 
 TEST(Materials, DiffuseSamplingMatchesPdf) {
     for (double theta : {0.0, 60.0}) chi_square_test(diffuse(glm::vec3(0.7f)), theta, kAlpha);
+}
+
+TEST(Materials, UniformHemisphereDiffuseSamplingMatchesPdf) {
+    for (double theta : {0.0, 60.0})
+        chi_square_test(diffuse(glm::vec3(0.7f)), theta, kAlpha, false, uniform_hemisphere_program());
+}
+
+// The build option does select the other estimator: every pdf is 1/(2 pi), and
+// cos theta is uniform on [0, 1] (mean 1/2; cosine weighting gives 2/3).
+TEST(Materials, UniformHemisphereIsUniform) {
+    const std::uint32_t n = 20000;
+    const Samples s = sample(diffuse(glm::vec3(0.7f)), from_angle(30), n, 5, uniform_hemisphere_program());
+    std::vector<double> z;
+    for (const auto& w : s.wi_pdf) {
+        if (w.s[3] < 0) continue;  // a direction exactly in the plane ends the path
+        EXPECT_FLOAT_EQ(w.s[3], float(0.5 / kPi));
+        z.push_back(w.s[2]);
+    }
+    const auto m = test::mean_error(z);
+    EXPECT_NEAR(m.mean, 0.5, 4.4 * m.std_error);  // alpha 1e-5, two-sided
 }
 
 TEST(Materials, ConductorSamplingMatchesPdf) {
@@ -126,8 +156,8 @@ TEST(Materials, ConductorSamplingMatchesPdf) {
 }
 
 // For every non-delta sample, weight = eval / pdf, as one definition must give.
-void expect_weight_is_eval_over_pdf(const Material& m, glm::vec3 wo) {
-    const Samples s = sample(m, wo, 2000);
+void expect_weight_is_eval_over_pdf(const Material& m, glm::vec3 wo, cl_program program = test::probe_program()) {
+    const Samples s = sample(m, wo, 2000, 7, program);
     std::vector<cl_float4> wos, wis;
     for (const auto& w : s.wi_pdf)
         if (w.s[3] > 0) {
@@ -135,7 +165,7 @@ void expect_weight_is_eval_over_pdf(const Material& m, glm::vec3 wo) {
             wis.push_back(w);
         }
     ASSERT_GT(wis.size(), 1000u) << "most samples must succeed";
-    const auto e = eval(m, wos, wis);
+    const auto e = eval(m, wos, wis, program);
     std::size_t j = 0;
     for (std::size_t i = 0; i < s.wi_pdf.size(); ++i) {
         if (!(s.wi_pdf[i].s[3] > 0)) continue;
@@ -149,9 +179,11 @@ void expect_weight_is_eval_over_pdf(const Material& m, glm::vec3 wo) {
     }
 }
 
+// With either hemisphere for diffuse bounces.
 TEST(Materials, SampleWeightEqualsEvalOverPdf) {
-    for (const Material& m : {diffuse(glm::vec3(0.5f, 0.6f, 0.7f)), conductor(glm::vec3(0.9f, 0.6f, 0.3f), 0.5f)})
-        expect_weight_is_eval_over_pdf(m, from_angle(40));
+    for (cl_program program : {test::probe_program(), uniform_hemisphere_program()})
+        for (const Material& m : {diffuse(glm::vec3(0.5f, 0.6f, 0.7f)), conductor(glm::vec3(0.9f, 0.6f, 0.3f), 0.5f)})
+            expect_weight_is_eval_over_pdf(m, from_angle(40), program);
     // Rough glass from outside and from inside, tinted.
     for (double theta : {40.0, 180.0 - 30.0})
         expect_weight_is_eval_over_pdf(dielectric(1.5f, 0.5f, glm::vec3(0.9f, 0.8f, 0.7f)), from_angle(theta));

@@ -1,6 +1,7 @@
 #include "support/test_device.hpp"
 
 #include <cstdio>
+#include <map>
 #include <memory>
 
 #include "cl/embedded_sources.hpp"
@@ -17,19 +18,25 @@ Context& device() {
     return *ctx;
 }
 
-cl_program probe_program() {
-    static Program program = [] {
+cl_program probe_program(const RenderSettings& settings) {
+    // One program per set of build options, built on first use; the device
+    // first, so that the programs are released before its context.
+    Context& ctx = device();
+    static std::map<std::string, Program> programs;
+    RenderSettings all = settings;
+    // Every feature compiled in, so probes reach every material and light kind.
+    all.all_features = true;
+    const std::string options = build_options(kernel_features(SceneFeatures{}, all));
+    auto it = programs.find(options);
+    if (it == programs.end()) {
         auto files = renderer_kernel_files();
         files.push_back("probes.cl");
-        // Every feature compiled in, so probes reach every material and light kind.
-        RenderSettings all;
-        all.all_features = true;
-        return std::move(
-            build_program(device(), program_source(files), build_options(kernel_features(SceneFeatures{}, all)))
-                .program);
-    }();
-    return program.get();
+        it = programs.emplace(options, build_program(ctx, program_source(files), options).program).first;
+    }
+    return it->second.get();
 }
+
+cl_program probe_program() { return probe_program(RenderSettings{}); }
 
 void run(const Kernel& k, std::size_t n) {
     device().launch(k, n, 0);

@@ -6,6 +6,7 @@
 
 #include "cl/context.hpp"
 #include "cl/program.hpp"
+#include "render/settings.hpp"
 
 namespace clpath::test {
 
@@ -14,6 +15,9 @@ Context& device();
 // A program made of the renderer's kernels plus tests/kernels/probes.cl,
 // built once per test program.
 cl_program probe_program();
+// The same, built with the estimator choices of these settings (e.g. uniform
+// hemisphere sampling); every feature is compiled in whatever they say.
+cl_program probe_program(const RenderSettings& settings);
 
 // Runs a kernel over n work-items and waits.
 void run(const Kernel& k, std::size_t n);

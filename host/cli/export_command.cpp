@@ -1,0 +1,76 @@
+// clpath export SCENE OUT.json: the scene as OBJ + MTL + a clpath scene file,
+// for rendering references with another renderer (Blender Cycles).
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "cli/commands.hpp"
+#include "scene/obj_export.hpp"
+#include "scene/scene_loader.hpp"
+#include "util/error.hpp"
+#include "util/text_file.hpp"
+
+namespace clpath {
+namespace {
+
+struct ExportArgs {
+    std::string scene, out;
+    int width = 0, height = 0;
+    std::optional<std::uint32_t> max_depth;
+};
+
+int run_export(const ExportArgs& o) {
+    namespace fs = std::filesystem;
+    const fs::path json = o.out;
+    if (json.extension() != ".json") throw Error("output " + o.out + ": must end in .json (the OBJ and MTL go beside it)");
+    const std::string stem = json.stem().string();
+    const fs::path obj = fs::path(json).replace_extension(".obj"), mtl = fs::path(json).replace_extension(".mtl");
+    for (const auto& p : {json, obj, mtl}) check_text_output_path(p.string());
+
+    Scene scene = load_scene(o.scene);
+    for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
+    if (o.width) scene.camera.width = o.width;
+    if (o.height) scene.camera.height = o.height;
+    if (o.max_depth) scene.render.max_depth = *o.max_depth;
+    ObjExport e;
+    try {
+        e = export_obj_scene(scene, stem, o.scene);
+    } catch (const Error& err) {
+        throw Error(o.scene + ": cannot export: " + err.what());
+    }
+    // The scene file last: it is what names the other two. A failure removes
+    // what this run wrote.
+    std::error_code ec;
+    try {
+        write_text_file(obj.string(), e.obj);
+        write_text_file(mtl.string(), e.mtl);
+        write_text_file(json.string(), e.json);
+    } catch (const Error&) {
+        for (const auto& p : {obj, mtl}) fs::remove(p, ec);
+        throw;
+    }
+    std::printf("wrote %s, %s, %s: %zu triangles, %dx%d, max depth %u\n", json.string().c_str(), obj.string().c_str(),
+                mtl.string().c_str(), scene.triangle_count(), scene.camera.width, scene.camera.height,
+                scene.render.max_depth);
+    return 0;
+}
+
+}  // namespace
+
+Command add_export_command(CLI::App& app) {
+    auto o = std::make_shared<ExportArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "export", "Write a scene of diffuse and emissive surfaces as OBJ + MTL + a scene file (for Cycles references)");
+    cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj) or built-in scene")->required();
+    cmd->add_option("out", o->out, "Output scene file NAME.json; NAME.obj and NAME.mtl are written beside it")
+        ->required();
+    cmd->add_option("--width", o->width, "Image width (default: the scene's)")->check(CLI::Range(1, 16384));
+    cmd->add_option("--height", o->height, "Image height (default: the scene's)")->check(CLI::Range(1, 16384));
+    cmd->add_option("--max-depth", o->max_depth, "Maximum bounces to record (default: the scene's)")
+        ->check(CLI::Range(0, 1024));
+    return [o] { return run_export(*o); };
+}
+
+}  // namespace clpath
