@@ -113,10 +113,15 @@ PixelAgreement pixel_agreement(const std::vector<Image>& runs, const Reference& 
     r.required = required;
     r.values = int(s.mean.size());
     r.alpha_value = 1 - std::pow(1 - alpha, 1.0 / r.values);
-    const double dof_a = double(runs.size()) - 1;
+    const double dof_runs = double(runs.size()) - 1;
+    if (!ref.run_var_of_mean.empty() && ref.run_var_of_mean.size() != s.mean.size())
+        throw std::invalid_argument("pixel_agreement: known variance size differs");
     for (std::size_t i = 0; i < s.mean.size(); ++i) {
         const double m_ref = ref.mean.rgb[i];
-        const double va = s.var_of_mean[i], vb = ref.var_of_mean.empty() ? 0.0 : ref.var_of_mean[i];
+        const bool known = !ref.run_var_of_mean.empty();
+        const double va = known ? ref.run_var_of_mean[i] : s.var_of_mean[i];
+        const double vb = ref.var_of_mean.empty() ? 0.0 : ref.var_of_mean[i];
+        const double dof_a = known ? INFINITY : dof_runs;
         const double diff = s.mean[i] - m_ref;
         double p;
         if (!std::isfinite(s.mean[i]) || !std::isfinite(m_ref)) {
@@ -124,7 +129,8 @@ PixelAgreement pixel_agreement(const std::vector<Image>& runs, const Reference& 
         } else if (std::fabs(diff) <= rounding_rel * std::fabs(m_ref)) {
             p = 1;
         } else if (va + vb > 0) {
-            const double dof = (va + vb) * (va + vb) / (va * va / dof_a + (vb > 0 ? vb * vb / ref.dof : 0.0));
+            const double den = (va > 0 ? va * va / dof_a : 0.0) + (vb > 0 ? vb * vb / ref.dof : 0.0);
+            const double dof = den > 0 ? (va + vb) * (va + vb) / den : INFINITY;
             p = student_t_two_sided_p(diff / std::sqrt(va + vb), dof);
         } else {
             p = 0;  // different, and neither side varies

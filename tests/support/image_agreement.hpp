@@ -36,6 +36,10 @@ struct Reference {
     Image mean;
     std::vector<double> var_of_mean;  // empty: exact (analytic)
     double dof = INFINITY;
+    // Where the variance of clpath's own estimate is known in closed form
+    // (0/1 samples of expectation m: m (1 - m) / samples), it replaces the
+    // runs' spread, which is 0 where every run happened to give the same value.
+    std::vector<double> run_var_of_mean;
 };
 // The mean of K independent runs, with the variance of that mean from their spread (dof K - 1).
 Reference reference_from_runs(const std::string& name, const std::vector<Image>& runs);
