@@ -227,8 +227,10 @@ void Renderer::add_samples(std::uint32_t n) {
     if (stats_.samples_per_pixel + n > kMaxSamplesPerPixel)
         throw Error("at most " + std::to_string(kMaxSamplesPerPixel) + " samples per pixel can be accumulated");
     const std::uint32_t all = tiled_pixel_count();
-    // Each launch's ray counter is 32-bit: keep pixels * samples * segments well below 2^32.
-    const double max_work = 0xffffffffu / double(settings_.max_depth + 2);
+    // Each launch's ray counter is 32-bit: keep pixels * samples * rays per
+    // sample below 2^32, by fewer samples per launch and, where one sample of
+    // every pixel is already too much (a 16384^2 film at depth 1024), by bands.
+    const double max_work = double(0xffffffffu) / double(max_rays_per_sample(settings_));
     while (n > 0) {
         const double target = settings_.target_launch_seconds;
         std::uint32_t samples = 1, band = all;
@@ -244,6 +246,8 @@ void Renderer::add_samples(std::uint32_t n) {
             }
         }
         samples = std::uint32_t(std::min<double>(samples, std::max(1.0, max_work / all)));
+        if (double(band) * samples > max_work)
+            band = std::max<std::uint32_t>(kWorkGroup, std::uint32_t(max_work / samples) / kWorkGroup * kWorkGroup);
         for (std::uint32_t first = 0; first < all; first += band)
             launch_band(first, std::min(band, all - first), samples);
         stats_.samples_per_pixel += samples;

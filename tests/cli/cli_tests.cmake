@@ -26,6 +26,8 @@ clpath_cli_test(unknown_scene FAIL ARGS render no-such-scene --spp 1 -o ${CLI_OU
                 OUTPUT "no-such-scene")
 clpath_cli_test(bad_spp FAIL ARGS render --spp 0 OUTPUT "spp")
 clpath_cli_test(bad_spp_text FAIL ARGS render --spp many OUTPUT "spp")
+# Beyond the 32-bit sample index the kernels use (host/render/renderer.hpp kMaxSamplesPerPixel).
+clpath_cli_test(spp_beyond_sample_index FAIL ARGS render --spp 4294967296 OUTPUT "spp.*not in range 1 to 4294967295")
 clpath_cli_test(bad_rr FAIL ARGS render --rr sometimes OUTPUT "rr")
 clpath_cli_test(no_subcommand FAIL ARGS "" OUTPUT "subcommand")
 

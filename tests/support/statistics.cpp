@@ -37,7 +37,52 @@ double gamma_q(double a, double x) {
     return std::exp(-x + a * std::log(x) - lg) * h;
 }
 
+// Regularized incomplete beta I_x(a, b) by Lentz's continued fraction
+// (Press et al., 3rd ed., 6.4), using the symmetry for x above the mean.
+double beta_cf(double a, double b, double x) {
+    const double tiny = 1e-300;
+    double c = 1, d = 1 - (a + b) * x / (a + 1);
+    if (std::fabs(d) < tiny) d = tiny;
+    d = 1 / d;
+    double h = d;
+    for (int m = 1; m < 10000; ++m) {
+        const double m2 = 2.0 * m;
+        double aa = m * (b - m) * x / ((a - 1 + m2) * (a + m2));
+        d = 1 + aa * d;
+        if (std::fabs(d) < tiny) d = tiny;
+        c = 1 + aa / c;
+        if (std::fabs(c) < tiny) c = tiny;
+        d = 1 / d;
+        h *= d * c;
+        aa = -(a + m) * (a + b + m) * x / ((a + m2) * (a + 1 + m2));
+        d = 1 + aa * d;
+        if (std::fabs(d) < tiny) d = tiny;
+        c = 1 + aa / c;
+        if (std::fabs(c) < tiny) c = tiny;
+        d = 1 / d;
+        const double del = d * c;
+        h *= del;
+        if (std::fabs(del - 1) < 1e-15) break;
+    }
+    return h;
+}
+
+double incomplete_beta(double a, double b, double x) {
+    if (x <= 0) return 0;
+    if (x >= 1) return 1;
+    const double front =
+        std::exp(std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log1p(-x));
+    if (x < (a + 1) / (a + b + 2)) return front * beta_cf(a, b, x) / a;
+    return 1 - front * beta_cf(b, a, 1 - x) / b;
+}
+
 }  // namespace
+
+double student_t_two_sided_p(double t, double dof) {
+    t = std::fabs(t);
+    if (!(dof < 1e7)) return std::erfc(t / std::sqrt(2.0));
+    return incomplete_beta(dof / 2, 0.5, dof / (dof + t * t));
+}
 
 double chi_square_sf(double x, double k) { return gamma_q(k / 2, x / 2); }
 

@@ -27,4 +27,8 @@ MeanError mean_error(const std::vector<double>& x);
 // Two-sided normal critical value for significance alpha (e.g. 1e-4 -> 3.89).
 double normal_quantile_two_sided(double alpha);
 
+// Two-sided tail probability P(|T| >= t) of Student's t distribution with dof
+// degrees of freedom (dof may be fractional, as Welch's is; infinity: normal).
+double student_t_two_sided_p(double t, double dof);
+
 }  // namespace clpath::test
