@@ -50,6 +50,29 @@ inline RayPre ray_prepare(float3 o, float3 d) {
     return r;
 }
 
+/* For a hit nearer than t's error bound: is the ray's origin in front of the
+ * triangle's plane beyond rounding, and heading towards it? Then the ray truly
+ * crosses the plane at t > 0, and the watertight edge test (exact signs) has
+ * already said the crossing is inside the triangle. The signed distance
+ * n.(o - v0) is computed in world space with n = (v1 - v0) x (v2 - v0); its
+ * error is at most gamma(8) sum_i |n|_i |o - v0|_i, where |n|_i sums the
+ * absolute products of n_i's cross product (one rounding for each edge
+ * difference, two for each product and difference, one for o - v0, two for
+ * the dot's products and sums: gamma(8); gamma(10) also covers the
+ * rounding of the bound itself): a few ulps of |o - v0|, not of the triangle's
+ * extent in the sheared frame. */
+inline int origin_clearly_in_front(const RayPre* r, float3 v0, float3 v1, float3 v2) {
+#pragma OPENCL FP_CONTRACT OFF
+    float3 e1 = v1 - v0, e2 = v2 - v0, w = r->org - v0;
+    float3 n = (float3)(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x);
+    float3 na = (float3)(fabs(e1.y * e2.z) + fabs(e1.z * e2.y), fabs(e1.z * e2.x) + fabs(e1.x * e2.z),
+                         fabs(e1.x * e2.y) + fabs(e1.y * e2.x));
+    float dist = n.x * w.x + n.y * w.y + n.z * w.z;
+    float bound = CLP_GAMMA(10) * (na.x * fabs(w.x) + na.y * fabs(w.y) + na.z * fabs(w.z));
+    float towards = n.x * r->dir.x + n.y * r->dir.y + n.z * r->dir.z;
+    return fabs(dist) > bound && ((dist > 0.0f && towards < 0.0f) || (dist < 0.0f && towards > 0.0f));
+}
+
 /* Watertight ray/triangle test. On a hit in (0, tmax) returns 1 and writes t and
  * the barycentric weights (b1, b2) of v1 and v2. */
 inline int intersect_triangle(const RayPre* r, float3 v0, float3 v1, float3 v2, float tmax, float* t_out,
@@ -89,9 +112,14 @@ inline int intersect_triangle(const RayPre* r, float3 v0, float3 v1, float3 v2, 
     float inv = 1.0f / det;
     float t = T * inv;
     /* t must be positive beyond its own rounding error, or a ray leaving a
-     * surface just above it can hit the surface's neighbour "behind" its
-     * origin (PBR 4th ed., 6.8.3; one extra gamma(2) for OpenCL's 2.5-ulp
-     * division and the scaling by sz). */
+     * surface just above it can re-hit it, or a coplanar neighbour, "behind"
+     * its origin (PBR 4th ed., 6.8.7; one extra gamma(2) for OpenCL's 2.5-ulp
+     * division and the scaling by sz). That bound is proportional to the
+     * triangle's extent, not to t: alone, it also rejected true hits within
+     * ~1e-5 of a triangle's size, and rays from a floor next to a wall (a
+     * concave corner) or across a thin gap passed through (tests/robustness/
+     * scale_test). A near hit is therefore kept when the origin's distance to
+     * the plane, whose bound is tight, shows it clearly in front. */
     float max_z = fmax(fabs(Az), fmax(fabs(Bz), fabs(Cz)));
     float max_x = fmax(fabs(Ax), fmax(fabs(Bx), fabs(Cx)));
     float max_y = fmax(fabs(Ay), fmax(fabs(By), fabs(Cy)));
@@ -100,7 +128,7 @@ inline int intersect_triangle(const RayPre* r, float3 v0, float3 v1, float3 v2, 
     float delta_e = 2.0f * (CLP_GAMMA(4) * max_x * max_y + delta_y * max_x + delta_x * max_y);
     float max_e = fmax(fabs(U), fmax(fabs(V), fabs(W)));
     float delta_t = 3.0f * (CLP_GAMMA(5) * max_e * max_z + delta_e * max_z + delta_z * max_e) * inv;
-    if (t <= delta_t) return 0;
+    if (t <= delta_t && !origin_clearly_in_front(r, v0, v1, v2)) return 0;
     *t_out = t;
     *b1_out = V * inv;
     *b2_out = W * inv;
