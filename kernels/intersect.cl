@@ -118,8 +118,12 @@ inline int intersect_triangle(const RayPre* r, float3 v0, float3 v1, float3 v2, 
      * triangle's extent, not to t: alone, it also rejected true hits within
      * ~1e-5 of a triangle's size, and rays from a floor next to a wall (a
      * concave corner) or across a thin gap passed through (tests/robustness/
-     * scale_test). A near hit is therefore kept when the origin's distance to
-     * the plane, whose bound is tight, shows it clearly in front. */
+     * scale_test). For sliver triangles seen nearly edge-on it even exceeds t
+     * itself (it grows like t^2 over the triangle's area seen along the ray):
+     * primary rays went through a 4M-triangle sphere (tests/kernels/
+     * intersect_test, TinyGrazingTrianglesFarAwayAreHit). A hit within the
+     * bound is therefore kept when the origin's distance to the plane, whose
+     * bound is tight, shows it clearly in front. */
     float max_z = fmax(fabs(Az), fmax(fabs(Bz), fabs(Cz)));
     float max_x = fmax(fabs(Ax), fmax(fabs(Bx), fabs(Cx)));
     float max_y = fmax(fabs(Ay), fmax(fabs(By), fabs(Cy)));
