@@ -22,6 +22,15 @@ for t in "$B"/tests/*_test; do
   CLPATH_DEVICE=nvidia timeout 300 "$t" --gtest_brief=1 2>&1 | tail -n 4
 done 2>&1 | tee -a "$OUT/gpu-tests.txt"
 
+# Equality in distribution between the GPU and PoCL (issue 7: bit equality
+# cannot hold between devices), and the hard-case suite on the GPU.
+echo "== cross-device agreement and robustness suite on the GPU" | tee "$OUT/robustness.txt"
+CLPATH_DEVICE=portable CLPATH_DEVICE_B=nvidia timeout 600 ctest --test-dir "$B" -R "ReferenceAgreement.CrossDevice" \
+  --output-on-failure 2>&1 | tail -n 30 | tee -a "$OUT/robustness.txt"
+CLPATH_DEVICE=nvidia timeout 900 ctest --test-dir "$B" -j4 --output-on-failure \
+  -R "Watertight|RayEdgeCases|Scale\.|Accumulation|LightTransportHard|DegenerateGeometry|BvhExtremes|RngSpectrum|HardScenes|ReferenceAgreement" \
+  2>&1 | tail -n 30 | tee -a "$OUT/robustness.txt"
+
 echo "== renders" | tee "$OUT/summary.txt"
 # Same scene and settings on both devices, independent seeds, for the statistical comparison.
 "$B/clpath" render --device nvidia --spp 256 --seed 1 -q -o "$OUT/cornell-gpu-256.pfm" 2>&1 | tee -a "$OUT/summary.txt"
