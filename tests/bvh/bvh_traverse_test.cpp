@@ -10,47 +10,17 @@
 #include "bvh/bvh.hpp"
 #include "scene/shapes.hpp"
 #include "support/test_device.hpp"
+#include "support/traversal_probes.hpp"
 
 using namespace clpath;
 
 namespace {
 
-struct Traced {
-    std::vector<float> t;
-    std::vector<int> prim, any;
-};
-
-Traced trace_bvh(const Bvh& bvh, const std::vector<float>& rays, const std::vector<float>& tmax) {
-    const std::uint32_t n = std::uint32_t(tmax.size());
-    Kernel k = test::device().kernel(test::probe_program(), "probe_trace");
-    Buffer nodes = test::upload(bvh.nodes), tris = test::upload(bvh.triangles), rb = test::upload(rays),
-           tb = test::upload(tmax);
-    Buffer ot = test::device().buffer(n * sizeof(float), CL_MEM_READ_WRITE, "t");
-    Buffer op = test::device().buffer(n * sizeof(int), CL_MEM_READ_WRITE, "prim");
-    Buffer oa = test::device().buffer(n * sizeof(int), CL_MEM_READ_WRITE, "any");
-    k.arg(0, nodes).arg(1, tris).arg(2, rb).arg(3, tb).arg(4, ot).arg(5, op).arg(6, oa).arg(7, n);
-    test::run(k, n);
-    return {test::download<float>(ot, n), test::download<int>(op, n), test::download<int>(oa, n)};
-}
+using test::Traced;
+using test::trace_bvh;
 
 Traced trace_brute(const std::vector<glm::vec3>& verts, const std::vector<float>& rays) {
-    const std::uint32_t n = std::uint32_t(rays.size() / 6), tc = std::uint32_t(verts.size() / 3);
-    std::vector<TriVerts> tris(tc);
-    for (std::uint32_t i = 0; i < tc; ++i) {
-        for (int c = 0; c < 3; ++c) {
-            tris[i].v0[c] = verts[3 * i][c];
-            tris[i].v1[c] = verts[3 * i + 1][c];
-            tris[i].v2[c] = verts[3 * i + 2][c];
-        }
-        tris[i].prim = i;
-    }
-    Kernel k = test::device().kernel(test::probe_program(), "probe_brute");
-    Buffer tb = test::upload(tris), rb = test::upload(rays);
-    Buffer ot = test::device().buffer(n * sizeof(float), CL_MEM_READ_WRITE, "t");
-    Buffer op = test::device().buffer(n * sizeof(int), CL_MEM_READ_WRITE, "prim");
-    k.arg(0, tb).arg(1, tc).arg(2, rb).arg(3, ot).arg(4, op).arg(5, n);
-    test::run(k, n);
-    return {test::download<float>(ot, n), test::download<int>(op, n), {}};
+    return test::trace_brute(test::device_triangles(verts), rays);
 }
 
 std::vector<glm::vec3> random_soup(std::size_t n, std::uint32_t seed) {

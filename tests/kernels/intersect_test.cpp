@@ -11,6 +11,7 @@
 #include "scene/shapes.hpp"
 #include "shared_structs.h"
 #include "support/test_device.hpp"
+#include "support/traversal_probes.hpp"
 
 using namespace clpath;
 
@@ -85,24 +86,10 @@ struct Results {
 // Each ray against every triangle of a mesh, through intersect_leaf (the
 // renderer's loop over a leaf): the closest t, or -1 for a miss.
 std::vector<float> closest_over_mesh(const std::vector<glm::vec3>& mesh, const std::vector<float>& rays) {
-    const std::uint32_t n = std::uint32_t(rays.size() / 6), tc = std::uint32_t(mesh.size() / 3);
-    std::vector<TriVerts> tris(tc);
-    for (std::uint32_t i = 0; i < tc; ++i) {
-        for (int c = 0; c < 3; ++c) {
-            tris[i].v0[c] = mesh[3 * i][c];
-            tris[i].v1[c] = mesh[3 * i + 1][c];
-            tris[i].v2[c] = mesh[3 * i + 2][c];
-        }
-        tris[i].prim = i;
-    }
-    Kernel k = test::device().kernel(test::probe_program(), "probe_brute");
-    Buffer tb = test::upload(tris), rb = test::upload(rays);
-    Buffer ot = test::device().buffer(n * sizeof(float), CL_MEM_READ_WRITE, "t");
-    Buffer op = test::device().buffer(n * sizeof(int), CL_MEM_READ_WRITE, "prim");
-    k.arg(0, tb).arg(1, tc).arg(2, rb).arg(3, ot).arg(4, op).arg(5, n);
-    test::run(k, n);
-    auto t = test::download<float>(ot, n);
-    const auto prim = test::download<int>(op, n);
+    const std::uint32_t n = std::uint32_t(rays.size() / 6);
+    const test::Traced hits = test::trace_brute(test::device_triangles(mesh), rays);
+    auto t = hits.t;
+    const auto& prim = hits.prim;
     for (std::uint32_t i = 0; i < n; ++i)
         if (prim[i] < 0) t[i] = -1;
     return t;

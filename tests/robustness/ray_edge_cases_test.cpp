@@ -14,15 +14,13 @@
 #include "bvh/bvh.hpp"
 #include "scene/shapes.hpp"
 #include "support/test_device.hpp"
+#include "support/traversal_probes.hpp"
 
 using namespace clpath;
 
 namespace {
 
-struct Traced {
-    std::vector<float> t;
-    std::vector<int> prim, any;
-};
+using test::Traced;
 
 struct Ray {
     glm::vec3 o, d;
@@ -35,28 +33,10 @@ std::vector<float> flat(const std::vector<Ray>& rays) {
 }
 
 Traced trace_bvh(const Bvh& bvh, const std::vector<Ray>& rays) {
-    const std::uint32_t n = std::uint32_t(rays.size());
-    Kernel k = test::device().kernel(test::probe_program(), "probe_trace");
-    Buffer nodes = test::upload(bvh.nodes), tris = test::upload(bvh.triangles), rb = test::upload(flat(rays)),
-           tb = test::upload(std::vector<float>(n, INFINITY));
-    Buffer ot = test::device().buffer(n * sizeof(float), CL_MEM_READ_WRITE, "t");
-    Buffer op = test::device().buffer(n * sizeof(int), CL_MEM_READ_WRITE, "prim");
-    Buffer oa = test::device().buffer(n * sizeof(int), CL_MEM_READ_WRITE, "any");
-    k.arg(0, nodes).arg(1, tris).arg(2, rb).arg(3, tb).arg(4, ot).arg(5, op).arg(6, oa).arg(7, n);
-    test::run(k, n);
-    return {test::download<float>(ot, n), test::download<int>(op, n), test::download<int>(oa, n)};
+    return test::trace_bvh(bvh, flat(rays), std::vector<float>(rays.size(), INFINITY));
 }
 
-Traced trace_brute(const Bvh& bvh, const std::vector<Ray>& rays) {
-    const std::uint32_t n = std::uint32_t(rays.size()), tc = std::uint32_t(bvh.triangles.size());
-    Kernel k = test::device().kernel(test::probe_program(), "probe_brute");
-    Buffer tb = test::upload(bvh.triangles), rb = test::upload(flat(rays));
-    Buffer ot = test::device().buffer(n * sizeof(float), CL_MEM_READ_WRITE, "t");
-    Buffer op = test::device().buffer(n * sizeof(int), CL_MEM_READ_WRITE, "prim");
-    k.arg(0, tb).arg(1, tc).arg(2, rb).arg(3, ot).arg(4, op).arg(5, n);
-    test::run(k, n);
-    return {test::download<float>(ot, n), test::download<int>(op, n), {}};
-}
+Traced trace_brute(const Bvh& bvh, const std::vector<Ray>& rays) { return test::trace_brute(bvh.triangles, flat(rays)); }
 
 // Traces through the BVH, checks it against brute force and finiteness, returns the BVH's answer.
 Traced traced(const std::vector<glm::vec3>& mesh, const std::vector<Ray>& rays) {

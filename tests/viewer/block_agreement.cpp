@@ -11,45 +11,6 @@
 namespace clpath::test {
 namespace {
 
-// Continued fraction for the regularized incomplete beta function
-// (Press et al., Numerical Recipes 3rd ed., 6.4, betacf).
-double beta_cf(double a, double b, double x) {
-    const double tiny = 1e-300;
-    double c = 1, d = 1 - (a + b) * x / (a + 1);
-    if (std::fabs(d) < tiny) d = tiny;
-    d = 1 / d;
-    double h = d;
-    for (int m = 1; m < 10000; ++m) {
-        const int m2 = 2 * m;
-        double aa = m * (b - m) * x / ((a + m2 - 1) * (a + m2));
-        d = 1 + aa * d;
-        if (std::fabs(d) < tiny) d = tiny;
-        c = 1 + aa / c;
-        if (std::fabs(c) < tiny) c = tiny;
-        d = 1 / d;
-        h *= d * c;
-        aa = -(a + m) * (a + b + m) * x / ((a + m2) * (a + m2 + 1));
-        d = 1 + aa * d;
-        if (std::fabs(d) < tiny) d = tiny;
-        c = 1 + aa / c;
-        if (std::fabs(c) < tiny) c = tiny;
-        d = 1 / d;
-        const double del = d * c;
-        h *= del;
-        if (std::fabs(del - 1) < 1e-15) break;
-    }
-    return h;
-}
-
-double incomplete_beta(double a, double b, double x) {
-    if (x <= 0) return 0;
-    if (x >= 1) return 1;
-    const double front =
-        std::exp(std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log1p(-x));
-    if (x < (a + 1) / (a + b + 2)) return front * beta_cf(a, b, x) / a;
-    return 1 - front * beta_cf(b, a, 1 - x) / b;
-}
-
 std::vector<double> block_means(const Image& img, int block, int c) {
     const int bx = img.width / block, by = img.height / block;
     std::vector<double> m(std::size_t(bx) * by, 0.0);
@@ -60,10 +21,6 @@ std::vector<double> block_means(const Image& img, int block, int c) {
 }
 
 }  // namespace
-
-double student_t_p_two_sided(double t, double nu) {
-    return incomplete_beta(nu / 2, 0.5, nu / (nu + t * t));
-}
 
 BlockAgreement compare_blocks(const Image& cand, unsigned cand_spp, const std::vector<Image>& refs, unsigned ref_spp,
                               double alpha, int block) {
@@ -92,7 +49,7 @@ BlockAgreement compare_blocks(const Image& cand, unsigned cand_spp, const std::v
             const double se = std::sqrt(me.variance * (double(ref_spp) / cand_spp + 1 / K) + rounding * rounding);
             const double diff = v[std::size_t(b)] - me.mean;
             const double t = se > 0 ? diff / se : 0;
-            const double p = std::max(student_t_p_two_sided(t, nu), 1e-300);
+            const double p = std::max(student_t_two_sided_p(t, nu), 1e-300);
             const double z = normal_quantile_two_sided(p);
             chi2 += z * z;
             if (z > out.largest_z) {

@@ -28,7 +28,4 @@ struct BlockAgreement {
 BlockAgreement compare_blocks(const Image& candidate, unsigned candidate_spp, const std::vector<Image>& references,
                               unsigned reference_spp, double alpha, int block = 8);
 
-// Two-sided p-value of Student's t with nu degrees of freedom.
-double student_t_p_two_sided(double t, double nu);
-
 }  // namespace clpath::test
