@@ -112,10 +112,6 @@ typedef struct {
     int delta;
 } LightSample;
 
-inline float triangle_light_area(global const Light* l) {
-    return 0.5f * length(cross(load3g(l->b) - load3g(l->a), load3g(l->c) - load3g(l->a)));
-}
-
 /* Triangle lights are sampled uniformly in the solid angle they subtend at the
  * shading point (Arvo 1995), which removes the 1/r^2 and light-cosine factors
  * from the estimate: what makes area sampling noisy next to a light. Points
