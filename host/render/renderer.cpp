@@ -12,7 +12,7 @@
 namespace clpath {
 namespace {
 
-constexpr std::uint32_t kTile = 8;        // kernels/integrator.cl CLP_TILE
+constexpr std::uint32_t kTile = CLP_TILE;
 constexpr std::size_t kWorkGroup = 64;
 
 void validate_settings(const RenderSettings& s) {
