@@ -130,8 +130,8 @@ typedef struct {
  *   Emulated in float32 over random points, its samples failed a chi-square
  *   test against 1/omega below a ratio of 0.021 and passed above it;
  *   tests/kernels/lights_test.cpp checks both sides of the rule.
- * Sampling and pdf use the same rule, so MIS stays exact. */
-/* The thresholds (CLP_*_SPHERICAL_*) are in shared_structs.h, where the host's tests read them. */
+ * Sampling and pdf use the same rule, so MIS stays exact. The thresholds
+ * (CLP_*_SPHERICAL_*) are in shared_structs.h, where the host's tests read them. */
 
 /* The solid angle of light triangle (a, b, c) at p when it is sampled by solid
  * angle, else 0. */

@@ -2,6 +2,7 @@
 # simulator that reports out-of-bounds and uninitialised accesses and data
 # races, which PoCL and GPU drivers let pass silently. Tiny images keep each
 # entry to seconds. Options:
+#   --check-api      OpenCL API misuse by the host (bad arguments, sizes);
 #   --data-races     work-group and global memory races;
 #   --uninitialized  reads of uninitialised memory; Oclgrind 21.10 cannot
 #                    interpret LLVM's freeze instruction, which the optimiser
@@ -12,7 +13,8 @@ set(OCLGRIND_CHECK ${CMAKE_CURRENT_SOURCE_DIR}/kernels/oclgrind_check.cmake)
 set(OCLGRIND_DATA ${CMAKE_CURRENT_SOURCE_DIR}/kernels/data)
 set(OCLGRIND_LOGS ${CMAKE_BINARY_DIR}/oclgrind-logs)
 file(MAKE_DIRECTORY ${OCLGRIND_LOGS})
-set(OCLGRIND_STRICT --data-races --uninitialized --build-options -cl-opt-disable)
+set(OCLGRIND_BASIC --check-api --data-races)
+set(OCLGRIND_STRICT ${OCLGRIND_BASIC} --uninitialized --build-options -cl-opt-disable)
 
 add_executable(probe_kernels_check ${CMAKE_CURRENT_SOURCE_DIR}/kernels/probe_kernels_check.cpp)
 target_link_libraries(probe_kernels_check PRIVATE clpath_test_support GTest::gtest)
@@ -46,14 +48,14 @@ foreach(integrator path path-bsdf ao normals depth albedo heatmap)
 endforeach()
 # Programs compiled with only the features a scene has, the flat object list,
 # uniform hemisphere sampling with the depth roulette rule.
-clpath_oclgrind_test(render.scene_features OPTIONS --data-races
+clpath_oclgrind_test(render.scene_features OPTIONS ${OCLGRIND_BASIC}
                      COMMAND $<TARGET_FILE:clpath> render ${OCLGRIND_SCENE} -q -o ${OCLGRIND_LOGS}/render-scene.pfm
                      OUTPUT "nonfinite=0")
-clpath_oclgrind_test(render.flat OPTIONS --data-races
+clpath_oclgrind_test(render.flat OPTIONS ${OCLGRIND_BASIC}
                      COMMAND $<TARGET_FILE:clpath> render ${OCLGRIND_SCENE} --accel flat -q
                              -o ${OCLGRIND_LOGS}/render-flat.pfm
                      OUTPUT "nonfinite=0 accel=flat")
-clpath_oclgrind_test(render.cornell_uniform_depth_rr OPTIONS --data-races
+clpath_oclgrind_test(render.cornell_uniform_depth_rr OPTIONS ${OCLGRIND_BASIC}
                      COMMAND $<TARGET_FILE:clpath> render cornell --width 5 --height 3 --spp 2 --hemisphere uniform
                              --rr depth -q -o ${OCLGRIND_LOGS}/render-cornell.pfm
                      OUTPUT "triangles=196 .*nonfinite=0")
@@ -61,21 +63,26 @@ clpath_oclgrind_test(render.cornell_uniform_depth_rr OPTIONS --data-races
 clpath_oclgrind_test(bench_rays.bvh OPTIONS ${OCLGRIND_STRICT}
                      COMMAND $<TARGET_FILE:clpath> bench rays ${OCLGRIND_SCENE} --width 4 --height 4 --launches 1
                      OUTPUT "primary: 256 rays .* 0 mismatched.*shadow: .* 0 mismatched.*diffuse: .* 0 mismatched")
-clpath_oclgrind_test(bench_rays.flat OPTIONS --data-races
+clpath_oclgrind_test(bench_rays.flat OPTIONS ${OCLGRIND_BASIC}
                      COMMAND $<TARGET_FILE:clpath> bench rays ${OCLGRIND_SCENE} --width 4 --height 4 --launches 1
                              --accel flat
                      OUTPUT "primary: 256 rays .* 0 mismatched.*shadow: .* 0 mismatched.*diffuse: .* 0 mismatched")
 # The test probes.
 clpath_oclgrind_test(probes OPTIONS ${OCLGRIND_STRICT} COMMAND $<TARGET_FILE:probe_kernels_check>
                      OUTPUT "\\[  PASSED  \\] 8 tests")
-# The control: a kernel that writes past its buffer's end must be reported.
-clpath_oclgrind_test(control_reports_out_of_bounds OPTIONS --data-races
+# The controls: a kernel that writes past its buffer's end, and one that
+# stores an uninitialised value, must be reported ...
+clpath_oclgrind_test(control_reports_out_of_bounds OPTIONS ${OCLGRIND_BASIC}
                      COMMAND $<TARGET_FILE:probe_kernels_check> --gtest_also_run_disabled_tests
-                             --gtest_filter=OclgrindControl.*
+                             --gtest_filter=OclgrindControl.DISABLED_WritePastTheEnd
                      OUTPUT "." REPORT "Invalid write of size 4 at global memory address")
-# ... and the same run checked as every other entry is must fail.
-clpath_oclgrind_test(control_fails_the_check OPTIONS --data-races
+clpath_oclgrind_test(control_reports_uninitialised OPTIONS ${OCLGRIND_STRICT}
                      COMMAND $<TARGET_FILE:probe_kernels_check> --gtest_also_run_disabled_tests
-                             --gtest_filter=OclgrindControl.*
+                             --gtest_filter=OclgrindControl.DISABLED_StoreUninitialised
+                     OUTPUT "." REPORT "Uninitialized value written to global memory")
+# ... and the same run checked as every other entry is must fail.
+clpath_oclgrind_test(control_fails_the_check OPTIONS ${OCLGRIND_BASIC}
+                     COMMAND $<TARGET_FILE:probe_kernels_check> --gtest_also_run_disabled_tests
+                             --gtest_filter=OclgrindControl.DISABLED_WritePastTheEnd
                      OUTPUT ".")
 set_tests_properties(oclgrind.control_fails_the_check PROPERTIES WILL_FAIL TRUE)

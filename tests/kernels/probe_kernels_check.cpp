@@ -182,14 +182,23 @@ TEST(ProbeKernels, Watertight) {
     test::run(k, 4 * kN);
 }
 
-// The control, run only under Oclgrind (its own CTest entry, which requires
-// the report): the kernel writes one element past the buffer's end.
+// The controls, run only under Oclgrind (their own CTest entries, which
+// require the report): kernels with an out-of-bounds write and an
+// uninitialised value.
 TEST(OclgrindControl, DISABLED_WritePastTheEnd) {
     Kernel k = test::device().kernel(test::test_program("oclgrind_control.cl", "-cl-std=CL1.2"),
                                      "control_write_past_end");
     Buffer out = out_buffer<std::uint32_t>(kN);
     k.arg(0, out).arg(1, kN);
     test::run(k, kN + 1);
+}
+
+TEST(OclgrindControl, DISABLED_StoreUninitialised) {
+    Kernel k = test::device().kernel(test::test_program("oclgrind_control.cl", "-cl-std=CL1.2"),
+                                     "control_store_uninitialised");
+    Buffer out = out_buffer<std::uint32_t>(kN);
+    k.arg(0, out).arg(1, kN);
+    test::run(k, kN);
 }
 
 // Oclgrind 21.10 (on LLVM 14) aborts with a corrupted heap when, at exit, it
