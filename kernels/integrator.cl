@@ -15,11 +15,9 @@
 #include "lights.cl"
 #include "film.cl"
 
-#ifndef CLP_INTEGRATOR
-#define CLP_INTEGRATOR CLP_INTEGRATOR_PATH
-#endif
-#ifndef CLP_MAX_DEPTH
-#define CLP_MAX_DEPTH 16u
+/* Both come from the host's settings, never from a default here. */
+#if !defined(CLP_INTEGRATOR) || !defined(CLP_MAX_DEPTH)
+#error "build with -DCLP_INTEGRATOR and -DCLP_MAX_DEPTH (host/render/kernel_features.cpp build_options)"
 #endif
 #define CLP_HEATMAP_MAX 128.0f /* nodes visited that map to the top of the heat map's colour ramp */
 
