@@ -91,6 +91,14 @@ void Context::read(const Buffer& b, void* data, std::size_t bytes, std::size_t o
              "clEnqueueReadBuffer");
 }
 
+void Context::zero(const Buffer& b) {
+    const cl_uint word = 0;
+    const std::size_t pattern = b.bytes() % sizeof word == 0 ? sizeof word : 1;
+    cl_check(clEnqueueFillBuffer(queue_, b.get(), &word, pattern, 0, b.bytes(), 0, nullptr, nullptr),
+             "clEnqueueFillBuffer");
+    finish();
+}
+
 Kernel Context::kernel(cl_program program, const std::string& name) {
     cl_int err = CL_SUCCESS;
     cl_kernel k = clCreateKernel(program, name.c_str(), &err);

@@ -117,6 +117,8 @@ public:
 
     void write(const Buffer& b, const void* data, std::size_t bytes, std::size_t offset = 0);
     void read(const Buffer& b, void* data, std::size_t bytes, std::size_t offset = 0);
+    // Sets every byte of b to zero (blocking).
+    void zero(const Buffer& b);
     template <class T>
     void write(const Buffer& b, const std::vector<T>& v) { write(b, v.data(), v.size() * sizeof(T)); }
     template <class T>
