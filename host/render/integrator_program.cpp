@@ -10,7 +10,7 @@
 namespace clpath {
 namespace {
 
-constexpr std::uint32_t kTile = 8;        // kernels/integrator.cl CLP_TILE
+constexpr std::uint32_t kTile = CLP_TILE;  // one definition: kernels/shared_structs.h
 constexpr std::size_t kWorkGroup = 64;
 
 // The work-items of a film: whole tiles, so the last row and column of tiles are padded.
