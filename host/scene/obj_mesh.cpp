@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -31,8 +32,10 @@ std::string_view next_token(std::string_view& s) {
 // The line starting at pos, without its end; pos moves past the end. Lines
 // end where tinyobjloader ends them: at \n, \r or \r\n.
 std::string_view next_line(const std::string& text, std::size_t& pos) {
-    std::size_t end = text.find_first_of("\r\n", pos);
+    std::size_t end = text.find('\n', pos);  // memchr-fast, then \r within the line only
     if (end == std::string::npos) end = text.size();
+    const void* cr = std::memchr(text.data() + pos, '\r', end - pos);
+    if (cr) end = std::size_t(static_cast<const char*>(cr) - text.data());
     const std::string_view line(text.data() + pos, end - pos);
     pos = end;
     if (pos < text.size() && text[pos++] == '\r' && pos < text.size() && text[pos] == '\n') ++pos;
