@@ -24,13 +24,15 @@ foreach(kind regressions seeds)
 endforeach()
 # A fresh copy of the seeds each time: libFuzzer adds what it finds to its
 # first corpus folder, and a corpus left from an earlier run would change
-# what this run explores. A crash is written to WORK/crash-* for keeping in
-# regressions/.
+# what this run explores. -reload=0: libFuzzer otherwise re-reads that folder
+# every second, which makes the inputs it explores depend on timing; with it,
+# two runs of one seed explore the same inputs. A crash is written to
+# WORK/crash-* for keeping in regressions/.
 file(REMOVE_RECURSE ${WORK}/corpus)
 file(MAKE_DIRECTORY ${WORK}/corpus)
 file(GLOB seeds ${SEEDS}/*)
 file(COPY ${seeds} DESTINATION ${WORK}/corpus)
-execute_process(COMMAND ${FUZZER} -seed=${SEED} -runs=${RUNS} -timeout=10 -rss_limit_mb=2048 -dict=${DICT}
+execute_process(COMMAND ${FUZZER} -seed=${SEED} -runs=${RUNS} -reload=0 -timeout=10 -rss_limit_mb=2048 -dict=${DICT}
                         -print_final_stats=1 -artifact_prefix=${WORK}/ ${WORK}/corpus
                 RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
