@@ -27,7 +27,6 @@ scenes=(
   "bunny                  scenes/bunny.json                                64 52"
   "far-from-origin        scenes/hard/far-from-origin.json                 64 64"
   "glass-in-glass         scenes/hard/glass-in-glass.json                  64 48"
-  "thin-gap               scenes/hard/thin-gap.json                        64 64"
   "tiny-light             scenes/hard/tiny-light.json                      64 48"
   "punctual-lights        benchmarks/references/scenes/punctual-lights.json 64 48"
   "metals                 benchmarks/references/scenes/metals.json         64 48"

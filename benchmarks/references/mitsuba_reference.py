@@ -18,8 +18,10 @@ What the export leaves to this script ("clpath_" keys):
   spot's texture, sampled finely (bilinear between texels 1/2048 of the cone
   apart: the falloff is then off by less than 1e-5);
 - an environment image is turned to clpath's orientation and its texels are
-  repeated 8x8 (Mitsuba interpolates between texel centres, clpath looks the
-  nearest texel up; repeated texels confine the difference to thin seams).
+  repeated 64x64 (Mitsuba interpolates between texel centres, clpath looks the
+  nearest texel up; repeated texels confine the difference to seams 1/64 of
+  a texel wide, and the ramp there averages to the step over any pixel that
+  holds it whole).
 """
 import argparse
 import json
@@ -100,7 +102,7 @@ def convert(d, folder):
         elif k == "filename" and d.get("type") == "envmap":
             path = v if os.path.isabs(v) else os.path.join(folder, v)
             img = np.array(mi.Bitmap(path).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, False))
-            img = np.repeat(np.repeat(img, 8, axis=0), 8, axis=1)
+            img = np.repeat(np.repeat(img, 64, axis=0), 64, axis=1)
             out["bitmap"] = mi.Bitmap(img.astype(np.float32))
         elif k.startswith("clpath_"):
             fail("unknown marker " + k)
