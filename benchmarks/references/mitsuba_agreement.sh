@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The full-size agreement of clpath with the Mitsuba 3 references: the test
-# program of tests/references/ at the references' own size (not half) with 16x
+# program of tests/references/ at twice the CI size (the references' own for
+# most) with 4x
 # the samples per run (CLPATH_MITSUBA_FULL=1), its verdicts and figures (per
 # pixel, image mean ratio +- standard error) written to
 # benchmarks/references/mitsuba-agreement.txt with the device and commit.
