@@ -7,10 +7,12 @@
 //     image), at least 99.75 % of the values passing (test::pixel_agreement);
 //   - the image mean: the ratio clpath / Mitsuba with its standard error (the
 //     runs' spread; the reference's per-pixel variances), t-tested at the
-//     level 1e-3 Sidak-corrected over the entries: a bias of a fraction of a
-//     percent, which no single pixel resolves, shows here.
-// In CI the images are half the references' size (each reference pixel block
-// of 2x2 averages to the half-size pixel exactly: the film is a box filter);
+//     level 1e-3 Sidak-corrected over the entries: a bias of about a percent
+//     (the standard errors in CI are 0.15-0.5 %, tiny-light's 2 %), which no
+//     single pixel resolves, shows here.
+// In CI the images are half the references' size, or smaller (Entry::factor;
+// each block of reference pixels averages to the smaller pixel exactly: the
+// film is a box filter);
 // CLPATH_MITSUBA_FULL=1 compares at twice that size (the references' own for
 // most) with 4x the samples per run
 // (benchmarks/references/mitsuba_agreement.sh).
