@@ -154,6 +154,17 @@ void Renderer::reset() {
     ctx_.launch(clear_, pixels, 0);
     ctx_.finish();
     stats_ = RenderStats{};
+    sample_offset_ = 0;
+}
+
+void Renderer::begin_chunk(std::uint32_t first_sample) {
+    reset();
+    sample_offset_ = first_sample;
+}
+
+void Renderer::read_film(std::vector<AccumPixel>& pixels) {
+    pixels.resize(std::size_t(camera_.width) * std::size_t(camera_.height));
+    ctx_.read(accum_, pixels.data(), pixels.size() * sizeof(AccumPixel));
 }
 
 void Renderer::set_camera(const Camera& camera) {
@@ -183,7 +194,7 @@ void Renderer::launch_band(std::uint32_t first_pixel, std::uint32_t pixel_count,
     FrameParams fp{};
     fp.camera = camera_data(camera_);
     fp.seed = settings_.seed;
-    fp.first_sample = std::uint32_t(stats_.samples_per_pixel);
+    fp.first_sample = sample_offset_ + std::uint32_t(stats_.samples_per_pixel);
     fp.samples = samples;
     fp.max_depth = settings_.max_depth;
     fp.rr_rule = settings_.rr_rule;
@@ -224,7 +235,7 @@ void Renderer::launch_band(std::uint32_t first_pixel, std::uint32_t pixel_count,
 }
 
 void Renderer::add_samples(std::uint32_t n) {
-    if (stats_.samples_per_pixel + n > kMaxSamplesPerPixel)
+    if (sample_offset_ + stats_.samples_per_pixel + n > kMaxSamplesPerPixel)
         throw Error("at most " + std::to_string(kMaxSamplesPerPixel) + " samples per pixel can be accumulated");
     const std::uint32_t all = tiled_pixel_count();
     // Each launch's ray counter is 32-bit: keep pixels * samples * rays per

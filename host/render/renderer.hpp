@@ -43,6 +43,12 @@ public:
     void add_samples(std::uint32_t n);
     // Starts the mean again (the viewer's camera moved), keeping the scene.
     void reset();
+    // Starts the mean again at sample index first_sample: the next samples
+    // added are first_sample, first_sample + 1, ... (one chunk of a render
+    // split over devices, render/chunks.hpp).
+    void begin_chunk(std::uint32_t first_sample);
+    // The film's raw compensated running sums, one AccumPixel per pixel.
+    void read_film(std::vector<AccumPixel>& pixels);
     void set_camera(const Camera& camera);
     // New settings restart the mean; the kernels are rebuilt (or loaded from
     // the cache) when the features they need change, e.g. another integrator.
@@ -94,7 +100,8 @@ private:
     RenderStats stats_;
     double compile_seconds_ = 0;
     bool from_cache_ = false;
-    double seconds_per_pixel_sample_ = 0;  // measured; sizes the launches
+    double seconds_per_pixel_sample_ = 0;
+    std::uint32_t sample_offset_ = 0;  // measured; sizes the launches
 };
 
 }  // namespace clpath
