@@ -40,15 +40,6 @@ void add_fixed128(void* in, void* inout, int* len, MPI_Datatype*) {
 
 }  // namespace
 
-bool launched_as_mpi_job() {
-    for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE", "MPI_LOCALNRANKS"})
-        if (const char* v = std::getenv(name); v && std::atoi(v) > 1) return true;
-    // Slurm's srun without an MPI launcher's variables still sets these.
-    if (const char* v = std::getenv("SLURM_NTASKS"); v && std::atoi(v) > 1 && std::getenv("SLURM_PROCID"))
-        return true;
-    return false;
-}
-
 MpiJob::MpiJob(int* argc, char*** argv) {
     int provided = 0;
     check(MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");

@@ -22,10 +22,6 @@
 
 namespace clpath {
 
-// Whether this process was started by an MPI launcher (mpirun, mpiexec,
-// Slurm's srun) as one of several ranks.
-bool launched_as_mpi_job();
-
 class MpiJob {
 public:
     MpiJob(int* argc, char*** argv);

@@ -16,6 +16,7 @@ DeviceFarm::DeviceFarm(std::vector<DeviceInfo> devices, const Scene& scene, cons
     if (film_.width() == 0) film_ = ExactFilm(scene.camera.width, scene.camera.height);
     if (film_.width() != scene.camera.width || film_.height() != scene.camera.height)
         throw Error("internal: the starting film does not match the camera");
+    spp_ = film_.samples_per_pixel();
     shares_.resize(devices_.size());
     for (std::size_t i = 0; i < devices_.size(); ++i) shares_[i].device = devices_[i].name;
 }
@@ -86,6 +87,7 @@ void DeviceFarm::run_device(std::size_t i, ChunkSource& source) {
             s.nonfinite += renderer.stats().nonfinite;
             s.busy_seconds = std::chrono::duration<double>(last - first).count();
             spp = film_.samples_per_pixel();
+            spp_ = spp;
         }
         if (on_chunk_) on_chunk_(spp);
     }

@@ -43,6 +43,8 @@ public:
     // (an interrupted render keeps only whole chunks).
     void cancel() { cancel_ = true; }
     bool finished() const { return running_ == 0; }
+    // Samples per pixel in the film so far (chunks finished, plus any resumed).
+    std::uint64_t samples_per_pixel() const { return spp_; }
     // Joins the threads; rethrows the first device's error.
     void wait();
 
@@ -67,6 +69,7 @@ private:
     BvhStats bvh_stats_;
     std::vector<std::thread> threads_;
     std::atomic<int> running_{0};
+    std::atomic<std::uint64_t> spp_{0};
     std::atomic<bool> cancel_{false};
     std::exception_ptr error_;
     std::function<void(std::uint64_t)> on_chunk_;

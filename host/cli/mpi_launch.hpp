@@ -1,0 +1,16 @@
+#pragma once
+// Whether this clpath runs as one rank of an MPI job, and the job if so.
+namespace clpath {
+
+class MpiJob;
+
+// Called first thing in main(): starts MPI when an MPI launcher (mpirun,
+// srun) started several ranks. In a build without MPI that is an error, said
+// plainly rather than rendering the same image N times.
+void start_mpi_if_launched(int* argc, char*** argv);
+// The job, or nullptr when not launched as several ranks.
+MpiJob* mpi_job();
+// Ends MPI (at the end of main); or, after an error on any rank, every rank.
+void finish_mpi(bool failed);
+
+}  // namespace clpath
