@@ -1,5 +1,6 @@
 #include "cli/chunked_render.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <thread>
@@ -65,6 +66,7 @@ ChunkedRenderResult render_in_chunks(const Scene& scene, const RenderSettings& s
     InterruptFlag interrupt;
     Progress progress(o.spp, o.time_limit, o.progress && lead);
     auto last_checkpoint = std::chrono::steady_clock::now();
+    std::uint64_t checkpointed_spp = farm.samples_per_pixel();
     auto poll = [&] {
         if (interrupt.raised() && !r.interrupted) {
             r.interrupted = true;
@@ -72,8 +74,9 @@ ChunkedRenderResult render_in_chunks(const Scene& scene, const RenderSettings& s
             queue.stop();
             farm.cancel();
         }
-        progress.update(farm.samples_per_pixel(), elapsed());
-        if (o.checkpoint_seconds > 0 &&
+        progress.update(farm.samples_per_pixel(), queue.seconds_since_start());
+        // A checkpoint is written when there is something new to keep.
+        if (o.checkpoint_seconds > 0 && farm.samples_per_pixel() > checkpointed_spp &&
             std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >=
                 o.checkpoint_seconds) {
             Checkpoint c;
@@ -82,6 +85,7 @@ ChunkedRenderResult render_in_chunks(const Scene& scene, const RenderSettings& s
             c.film = farm.snapshot(&c.done_chunks);
             std::sort(c.done_chunks.begin(), c.done_chunks.end());
             write_checkpoint(o.checkpoint_path, c);
+            checkpointed_spp = c.film.samples_per_pixel();
             last_checkpoint = std::chrono::steady_clock::now();
         }
     };
@@ -102,7 +106,8 @@ ChunkedRenderResult render_in_chunks(const Scene& scene, const RenderSettings& s
     }
     farm.wait();
     progress.finish();
-    r.wall_seconds = elapsed();
+    // Rendering time, from the first chunk: kernel compiles and uploads are not in it.
+    r.wall_seconds = lead ? queue.seconds_since_start() : elapsed();
     r.film = farm.snapshot();
     r.shares = farm.shares();
     r.bvh = farm.bvh_stats();

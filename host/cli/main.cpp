@@ -49,7 +49,7 @@ int run(int argc, char** argv) {
             if (auto it = commands.find(sub); it != commands.end()) return it->second();
         return 2;
     } catch (const clpath::Error& e) {
-        std::fprintf(stderr, "clpath: error: %s\n", e.what());
+        std::fprintf(stderr, "clpath: error: %s%s\n", clpath::rank_prefix().c_str(), e.what());
         return 1;
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "clpath: error: out of host memory\n");

@@ -45,6 +45,13 @@ MpiJob* mpi_job() {
 #endif
 }
 
+std::string rank_prefix() {
+#ifdef CLPATH_WITH_MPI
+    if (g_job && g_job->size() > 1) return "rank " + std::to_string(g_job->rank()) + " (" + g_job->host() + "): ";
+#endif
+    return "";
+}
+
 void finish_mpi(bool failed) {
 #ifdef CLPATH_WITH_MPI
     if (!g_job) return;

@@ -1,5 +1,7 @@
 #pragma once
 // Whether this clpath runs as one rank of an MPI job, and the job if so.
+#include <string>
+
 namespace clpath {
 
 class MpiJob;
@@ -10,6 +12,8 @@ class MpiJob;
 void start_mpi_if_launched(int* argc, char*** argv);
 // The job, or nullptr when not launched as several ranks.
 MpiJob* mpi_job();
+// "rank R (host): " for messages of a rank of a job of several, else "".
+std::string rank_prefix();
 // Ends MPI (at the end of main); or, after an error on any rank, every rank.
 void finish_mpi(bool failed);
 

@@ -33,13 +33,24 @@ ChunkQueue::ChunkQueue(ChunkPlan plan, double time_budget_seconds, std::vector<s
     : plan_(plan), has_deadline_(time_budget_seconds > 0), done_(std::move(done)) {
     if (plan_.chunk_samples == 0) throw Error("internal: chunks of 0 samples");
     std::sort(done_.begin(), done_.end());
-    deadline_ = std::chrono::steady_clock::now() +
-                std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                    std::chrono::duration<double>(has_deadline_ ? time_budget_seconds : 0));
+    budget_ = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(has_deadline_ ? time_budget_seconds : 0));
+}
+
+double ChunkQueue::seconds_since_start() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!started_) return 0;
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - (deadline_ - budget_)).count();
 }
 
 std::optional<Chunk> ChunkQueue::next() {
     std::lock_guard<std::mutex> lock(mutex_);
+    // The budget starts with the first chunk, so that kernel compiles and
+    // uploads do not eat into it.
+    if (!started_) {
+        started_ = true;
+        deadline_ = std::chrono::steady_clock::now() + budget_;
+    }
     for (;;) {
         if (stopped_) return std::nullopt;
         if (has_deadline_ && std::chrono::steady_clock::now() >= deadline_) return std::nullopt;

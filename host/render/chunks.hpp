@@ -43,19 +43,23 @@ public:
 };
 
 // The queue of one process: chunks in index order, until the plan is done,
-// the time budget is spent (no chunk is started after it), or stop() is called.
+// the time budget is spent (counted from the first chunk handed out; no chunk
+// is started after it), or stop() is called.
 // Chunks listed as done (a resumed render) are skipped. Thread-safe.
 class ChunkQueue : public ChunkSource {
 public:
     ChunkQueue(ChunkPlan plan, double time_budget_seconds, std::vector<std::uint64_t> done = {});
     std::optional<Chunk> next() override;
     void stop() { stopped_ = true; }
+    // Seconds since the first chunk was handed out (0 before).
+    double seconds_since_start();
     bool stopped() const { return stopped_; }
 
 private:
     ChunkPlan plan_;
-    std::chrono::steady_clock::time_point deadline_;
-    bool has_deadline_;
+    std::chrono::steady_clock::duration budget_{};
+    std::chrono::steady_clock::time_point deadline_{};
+    bool has_deadline_, started_ = false;
     std::vector<std::uint64_t> done_;  // sorted
     std::mutex mutex_;
     std::uint64_t next_ = 0;
