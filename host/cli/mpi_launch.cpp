@@ -45,6 +45,20 @@ MpiJob* mpi_job() {
 #endif
 }
 
+int mpi_rank() {
+#ifdef CLPATH_WITH_MPI
+    if (g_job) return g_job->rank();
+#endif
+    return 0;
+}
+
+int mpi_size() {
+#ifdef CLPATH_WITH_MPI
+    if (g_job) return g_job->size();
+#endif
+    return 1;
+}
+
 std::string rank_prefix() {
 #ifdef CLPATH_WITH_MPI
     if (g_job && g_job->size() > 1) return "rank " + std::to_string(g_job->rank()) + " (" + g_job->host() + "): ";

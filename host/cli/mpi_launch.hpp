@@ -12,6 +12,9 @@ class MpiJob;
 void start_mpi_if_launched(int* argc, char*** argv);
 // The job, or nullptr when not launched as several ranks.
 MpiJob* mpi_job();
+// This process's rank and the number of ranks (0 and 1 outside MPI).
+int mpi_rank();
+int mpi_size();
 // "rank R (host): " for messages of a rank of a job of several, else "".
 std::string rank_prefix();
 // Ends MPI (at the end of main); or, after an error on any rank, every rank.

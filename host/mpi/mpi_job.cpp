@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <thread>
 
 #include "util/error.hpp"
@@ -156,7 +157,7 @@ std::vector<DeviceShare> MpiJob::gather_shares(const std::vector<DeviceShare>& l
         std::uint64_t chunks, spp, rays, nonfinite;
         double busy;
     };
-    std::vector<Wire> mine;
+    std::string mine;
     for (const auto& s : local) {
         Wire w{};
         const std::string name = "rank " + std::to_string(rank_) + " (" + host_ + "): " + s.device;
@@ -166,23 +167,36 @@ std::vector<DeviceShare> MpiJob::gather_shares(const std::vector<DeviceShare>& l
         w.rays = s.rays;
         w.nonfinite = s.nonfinite;
         w.busy = s.busy_seconds;
-        mine.push_back(w);
+        mine.append(reinterpret_cast<const char*>(&w), sizeof w);
     }
+    std::vector<DeviceShare> out;
+    for (const std::string& bytes : gather_bytes(mine))
+        for (std::size_t at = 0; at + sizeof(Wire) <= bytes.size(); at += sizeof(Wire)) {
+            Wire w;
+            std::memcpy(&w, bytes.data() + at, sizeof w);
+            out.push_back({w.device, w.chunks, w.spp, w.rays, w.nonfinite, w.busy});
+        }
+    return out;
+}
+
+std::vector<std::string> MpiJob::gather_bytes(const std::string& mine) {
+    if (mine.size() > std::size_t(std::numeric_limits<int>::max())) throw Error("internal: an MPI message over 2 GiB");
     int count = int(mine.size());
     std::vector<int> counts(static_cast<std::size_t>(size_)), offsets(static_cast<std::size_t>(size_));
     check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Gather");
-    int total = 0;
+    long long total = 0;
     for (int r = 0; r < size_; ++r) {
-        offsets[std::size_t(r)] = total * int(sizeof(Wire));
+        offsets[std::size_t(r)] = int(total);
         total += counts[std::size_t(r)];
-        counts[std::size_t(r)] *= int(sizeof(Wire));
     }
-    std::vector<Wire> all(std::size_t(rank_ == 0 ? total : 0));
-    check(MPI_Gatherv(mine.data(), count * int(sizeof(Wire)), MPI_BYTE, all.data(), counts.data(), offsets.data(),
-                      MPI_BYTE, 0, MPI_COMM_WORLD),
+    if (total > std::numeric_limits<int>::max()) throw Error("internal: MPI messages over 2 GiB in all");
+    std::string all(rank_ == 0 ? std::size_t(total) : 0, '\0');
+    check(MPI_Gatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, 0,
+                      MPI_COMM_WORLD),
           "MPI_Gatherv");
-    std::vector<DeviceShare> out;
-    for (const Wire& w : all) out.push_back({w.device, w.chunks, w.spp, w.rays, w.nonfinite, w.busy});
+    std::vector<std::string> out;
+    if (rank_ == 0)
+        for (int r = 0; r < size_; ++r) out.push_back(all.substr(std::size_t(offsets[std::size_t(r)]), std::size_t(counts[std::size_t(r)])));
     return out;
 }
 

@@ -50,6 +50,8 @@ public:
 
     // Sums every rank's film into rank 0's (the others' are left unchanged).
     void reduce_film(ExactFilm& film);
+    // Every rank's bytes, gathered on rank 0 in rank order (empty elsewhere).
+    std::vector<std::string> gather_bytes(const std::string& mine);
     // Every rank's device shares, gathered on rank 0 (named "rank R: device").
     std::vector<DeviceShare> gather_shares(const std::vector<DeviceShare>& local);
 

@@ -53,4 +53,9 @@ if(CLPATH_WITH_MPI)
     clpath_command_test(mpi_rank_dies FAIL OUTPUT "exited on signal 9" FORBID ${SCALE_OUT}/dies.pfm
         CMD ${MPIRUN} -n 1 ${C} render --spp 100000 --width 40 --height 32 -q -o ${SCALE_OUT}/dies.pfm
             : -n 1 ${CMAKE_CURRENT_SOURCE_DIR}/cli/dying_rank.sh)
+    # A convergence study over ranks: every configuration is measured once and reported by rank 0.
+    clpath_command_test(mpi_bench_convergence
+        OUTPUT "spread over 2 MPI ranks.*\\| thesis .*\\| cosine .*\\| no-rr .*\\| throughput-rr .*\\| nee-mis .*\\| bvh .*\\| clpath "
+        CMD ${MPIRUN} -n 2 ${C} bench convergence ${CMAKE_SOURCE_DIR}/scenes/cornell-classic.json
+            --reference ${CMAKE_SOURCE_DIR}/benchmarks/references/cornell-classic-cycles.exr --quick --max-spp 2)
 endif()
