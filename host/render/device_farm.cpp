@@ -10,9 +10,11 @@ namespace clpath {
 
 DeviceFarm::DeviceFarm(std::vector<DeviceInfo> devices, const Scene& scene, const RenderSettings& settings,
                        ExactFilm start, std::vector<std::uint64_t> start_chunks)
-    : devices_(std::move(devices)), scene_(scene), settings_(settings), triangle_count_(scene.triangle_count()),
+    : devices_(std::move(devices)), settings_(settings), scene_camera_(scene.camera),
       film_(std::move(start)), done_(std::move(start_chunks)) {
     if (devices_.empty()) throw Error("internal: a device farm with no device");
+    // The BVH, light table and environment are built once, for every device.
+    prepared_ = prepare_scene(scene, settings_);
     if (film_.width() == 0) film_ = ExactFilm(scene.camera.width, scene.camera.height);
     if (film_.width() != scene.camera.width || film_.height() != scene.camera.height)
         throw Error("internal: the starting film does not match the camera");
@@ -48,22 +50,23 @@ void DeviceFarm::run_device(std::size_t i, ChunkSource& source) {
     Context ctx(device);
     Renderer renderer = [&] {
         try {
-            return Renderer(ctx, scene_, settings_);
+            return Renderer(ctx, *prepared_, settings_);
         } catch (const Error& e) {
             throw Error("device [" + std::to_string(device.index) + "] " + device.name + ": " + e.what());
         }
     }();
-    if (i == 0) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        bvh_stats_ = renderer.bvh_stats();
-    }
-    std::vector<AccumPixel> pixels;
+    // A chunk is rendered into an empty film whose sample count starts at the
+    // chunk's first sample index, so the kernels draw that chunk's samples.
+    FilmState empty{scene_camera_.width, scene_camera_.height, 0,
+                    std::vector<AccumPixel>(std::size_t(scene_camera_.width) * std::size_t(scene_camera_.height))};
     std::chrono::steady_clock::time_point first{}, last{};
     while (!cancel_) {
         const std::optional<Chunk> chunk = source.next();
         if (!chunk) break;
         if (first == std::chrono::steady_clock::time_point{}) first = std::chrono::steady_clock::now();
-        renderer.begin_chunk(chunk->first_sample);
+        renderer.reset();
+        empty.samples_per_pixel = chunk->first_sample;
+        renderer.film().write_state(empty);
         // A chunk is added in a few steps, so that a cancel is seen within one
         // step; the samples and their order do not depend on the steps.
         const std::uint32_t step = std::max<std::uint32_t>(1, (chunk->samples + 3) / 4);
@@ -73,18 +76,19 @@ void DeviceFarm::run_device(std::size_t i, ChunkSource& source) {
             done += n;
         }
         if (cancel_) break;  // an unfinished chunk is dropped whole
-        renderer.read_film(pixels);
+        const FilmState state = renderer.film().read_state();
+        const RenderStats stats = renderer.stats();
         last = std::chrono::steady_clock::now();
         std::uint64_t spp;
         {
             std::lock_guard<std::mutex> lock(mutex_);
-            film_.add_chunk(pixels, chunk->samples);
+            film_.add_chunk(state.pixels, chunk->samples);
             done_.push_back(chunk->index);
             DeviceShare& s = shares_[i];
             ++s.chunks;
             s.samples_per_pixel += chunk->samples;
-            s.rays += renderer.stats().rays;
-            s.nonfinite += renderer.stats().nonfinite;
+            s.rays += stats.rays;
+            s.nonfinite += stats.nonfinite;
             s.busy_seconds = std::chrono::duration<double>(last - first).count();
             spp = film_.samples_per_pixel();
             spp_ = spp;
@@ -106,9 +110,6 @@ ExactFilm DeviceFarm::snapshot(std::vector<std::uint64_t>* done_chunks) const {
     return film_;
 }
 
-BvhStats DeviceFarm::bvh_stats() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return bvh_stats_;
-}
+const BvhStats& DeviceFarm::bvh_stats() const { return prepared_->summary.bvh_stats; }
 
 }  // namespace clpath

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -14,6 +15,7 @@
 #include "cl/device.hpp"
 #include "render/chunks.hpp"
 #include "render/exact_film.hpp"
+#include "render/prepared_scene.hpp"
 #include "render/renderer.hpp"
 
 namespace clpath {
@@ -51,22 +53,19 @@ public:
     // A consistent copy of the film and the chunks it holds, at any time.
     ExactFilm snapshot(std::vector<std::uint64_t>* done_chunks = nullptr) const;
     const std::vector<DeviceShare>& shares() const { return shares_; }
-    // Statistics of the first renderer (BVH, compile), once started.
-    BvhStats bvh_stats() const;
-    std::size_t triangle_count() const { return triangle_count_; }
+    const BvhStats& bvh_stats() const;
 
 private:
     void run_device(std::size_t i, ChunkSource& source);
 
     std::vector<DeviceInfo> devices_;
-    const Scene& scene_;
     RenderSettings settings_;
-    std::size_t triangle_count_;
+    Camera scene_camera_;
+    std::shared_ptr<const PreparedScene> prepared_;
     mutable std::mutex mutex_;
     ExactFilm film_;
     std::vector<std::uint64_t> done_;
     std::vector<DeviceShare> shares_;
-    BvhStats bvh_stats_;
     std::vector<std::thread> threads_;
     std::atomic<int> running_{0};
     std::atomic<std::uint64_t> spp_{0};
