@@ -159,10 +159,9 @@ int run_render(const RenderOptions& o) {
                         s.busy_seconds > 0 ? double(s.samples_per_pixel) * scene.camera.width * scene.camera.height /
                                                  s.busy_seconds * 1e-6
                                            : 0.0);
-    const RenderStats st{done_spp, result.rays, result.nonfinite, 0, wall};
-    if (st.nonfinite)
+    if (result.nonfinite)
         std::fprintf(stderr, "clpath: warning: %llu samples were NaN or infinite and were dropped\n",
-                     (unsigned long long)st.nonfinite);
+                     (unsigned long long)result.nonfinite);
     return 0;
 }
 

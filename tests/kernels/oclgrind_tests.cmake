@@ -47,7 +47,7 @@ foreach(integrator path path-bsdf ao normals depth albedo heatmap)
     clpath_oclgrind_test(render.${integrator} OPTIONS ${OCLGRIND_BASIC}
                          COMMAND $<TARGET_FILE:clpath> render ${OCLGRIND_SCENE} --all-features -i ${integrator}
                                  -q -o ${OCLGRIND_LOGS}/render-${integrator}.pfm
-                         OUTPUT "device=\"Oclgrind Simulator\" integrator=${integrator} .*nonfinite=0")
+                         OUTPUT "device=\"Oclgrind Simulator\" .*integrator=${integrator} .*nonfinite=0")
 endforeach()
 # Programs compiled with only the features a scene has, the flat object list,
 # uniform hemisphere sampling with the depth roulette rule.
