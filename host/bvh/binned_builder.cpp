@@ -162,6 +162,8 @@ public:
     Builder(const BvhBuildOptions& opt, Ref* main, Ref* tmp, TreeNode* nodes)
         : opt_(opt), main_(main), tmp_(tmp), nodes_(nodes), chunk_bins_(std::size_t(opt.threads)) {}
 
+    std::atomic<std::size_t> leaves{0};
+
     void build(const Range& root) {
         std::vector<Range> tasks;
         if (root.end - root.begin >= kBigNode) {
@@ -222,7 +224,9 @@ private:
     bool force_median(const Range& r) const {
         const std::uint32_t n = r.end - r.begin;
         const int levels_left = CLP_BVH_MAX_DEPTH - r.depth;
-        const int balanced_needs = int(std::ceil(std::log2(double(n) / opt_.max_leaf_size))) + 1;
+        // balanced_needs = ceil(log2(n / max_leaf_size)) + 1, in integers.
+        int balanced_needs = 1;
+        for (std::uint64_t cap = std::uint64_t(opt_.max_leaf_size); cap < n; cap *= 2) ++balanced_needs;
         return balanced_needs >= levels_left;
     }
 
@@ -410,6 +414,7 @@ private:
     void subtree(const Range& root, Bins& bins) {
         Range stack[2 * CLP_BVH_MAX_DEPTH + 4];
         int sp = 0;
+        std::size_t leaf_count = 0;
         stack[sp++] = root;
         while (sp > 0) {
             const Range r = stack[--sp];
@@ -429,6 +434,7 @@ private:
             if (d.kind == Decision::Leaf) {
                 bins.reset(opt_.bins);  // the bins are empty between nodes
                 leaf(r);
+                ++leaf_count;
                 continue;
             }
             Range left{}, right{};
@@ -459,6 +465,7 @@ private:
             stack[sp++] = right;
             stack[sp++] = left;
         }
+        leaves += leaf_count;
         if (root.in_tmp) std::memcpy(main_ + root.begin, tmp_ + root.begin, (root.end - root.begin) * sizeof(Ref));
     }
 };
@@ -511,7 +518,9 @@ Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& o
     root.slot = 0;
     root.depth = 1;
     root.in_tmp = false;
-    Builder(opt, refs, tmp.get(), tree.nodes.get()).build(root);
+    Builder builder(opt, refs, tmp.get(), tree.nodes.get());
+    builder.build(root);
+    tree.leaf_count = builder.leaves;
     return tree;
 }
 

@@ -39,6 +39,7 @@ struct Tree {
     std::unique_ptr<TreeNode[]> nodes;  // slot 0 is the root; unused slots are left unwritten
     std::unique_ptr<Ref[]> refs;        // in leaf order
     std::size_t ref_count = 0;
+    std::size_t leaf_count = 0;
 };
 
 // options: validated, threads >= 1. Throws clpath::Error for a non-finite vertex.

@@ -103,6 +103,7 @@ Bvh build_bvh(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& opt
 
     const bvh_build::Tree tree = bvh_build::build_tree(vertices, opt);
     Bvh bvh;
+    bvh.nodes.reserve(std::max<std::size_t>(tree.leaf_count, 2) - 1);  // one BvhNode per interior node
     flatten(tree.nodes.get(), bvh, opt.traversal_cost);
     bvh.triangles.resize(n);
     const bvh_build::Ref* refs = tree.refs.get();
