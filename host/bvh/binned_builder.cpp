@@ -37,7 +37,7 @@ constexpr int kMaxBins = 256;
 // Nodes over at least this many triangles are binned and partitioned by all
 // threads; smaller subtrees are built whole, one per thread. A size, not a
 // share of the threads, so the tree is the same for every thread count.
-constexpr std::uint32_t kBigNode = 1u << 16;
+constexpr std::uint32_t kBigNode = 1u << 14;
 
 // Per axis, the bins' boxes and counts, and the list of bins the SAH sweep
 // visits: all of them, or for a node over fewer triangles than bins only the
@@ -160,27 +160,28 @@ void bin_refs_sparse(const Ref* r, std::uint32_t begin, std::uint32_t end, const
 class Builder {
 public:
     Builder(const BvhBuildOptions& opt, Ref* main, Ref* tmp, TreeNode* nodes)
-        : opt_(opt), main_(main), tmp_(tmp), nodes_(nodes), chunk_bins_(std::size_t(opt.threads)) {}
+        : opt_(opt), main_(main), tmp_(tmp), nodes_(nodes) {}
 
     std::atomic<std::size_t> leaves{0};
 
     void build(const Range& root) {
-        std::vector<Range> tasks;
-        if (root.end - root.begin >= kBigNode) {
-            big_node(root, tasks);
-        } else {
-            tasks.push_back(root);
+        std::vector<Range> tasks, level, next;
+        (root.end - root.begin >= kBigNode ? level : tasks).push_back(root);
+        while (!level.empty()) {
+            big_level(level, next, tasks);
+            level.swap(next);
+            next.clear();
         }
         // Largest first, so the last task to start is a small one.
         std::sort(tasks.begin(), tasks.end(), [](const Range& a, const Range& b) {
             return a.end - a.begin > b.end - b.begin || (a.end - a.begin == b.end - b.begin && a.begin < b.begin);
         });
-        std::atomic<std::size_t> next{0};
+        std::atomic<std::size_t> next_task{0};
         const int workers = int(std::min<std::size_t>(std::size_t(opt_.threads), tasks.size()));
         std::vector<std::unique_ptr<Bins>> worker_bins(std::size_t(std::max(workers, 1)));
         for (auto& b : worker_bins) b = std::make_unique<Bins>();
         fork_join(workers, [&](int w) {
-            for (std::size_t i; (i = next.fetch_add(1)) < tasks.size();) subtree(tasks[i], *worker_bins[w]);
+            for (std::size_t i; (i = next_task.fetch_add(1)) < tasks.size();) subtree(tasks[i], *worker_bins[w]);
         });
     }
 
@@ -189,7 +190,6 @@ private:
     Ref* main_;
     Ref* tmp_;
     TreeNode* nodes_;
-    std::vector<Bins> chunk_bins_;
 
     Ref* refs(const Range& r) const { return r.in_tmp ? tmp_ : main_; }
 
@@ -330,83 +330,104 @@ private:
         left.in_tmp = right.in_tmp = in_tmp;
     }
 
-    // A node large enough for all threads: parallel binning, then a stable
+    // The nodes of one level large enough for all threads, together (one
+    // fork-join per pass, not per node): parallel binning, then a stable
     // partition scattered into the other array (the same result however the
-    // records are cut into chunks). Children this large recurse, the others
-    // become tasks.
-    void big_node(const Range& r, std::vector<Range>& tasks) {
+    // records are cut into chunks). Children this large form the next level,
+    // the others become tasks.
+    void big_level(const std::vector<Range>& level, std::vector<Range>& next, std::vector<Range>& tasks) {
         const int T = opt_.threads;
-        const std::uint32_t n = r.end - r.begin;
-        auto chunk = [&](int t) { return r.begin + std::uint32_t(std::uint64_t(n) * std::uint32_t(t) / std::uint32_t(T)); };
-        const Ref* src = refs(r);
-        const BinMap map(r.cbox, opt_.bins);
+        const std::size_t L = level.size();
+        auto chunk = [&](std::size_t i, int t) {
+            const Range& r = level[i];
+            return r.begin + std::uint32_t(std::uint64_t(r.end - r.begin) * std::uint32_t(t) / std::uint32_t(T));
+        };
+        std::vector<BinMap> maps;
+        maps.reserve(L);
+        for (const Range& r : level) maps.emplace_back(r.cbox, opt_.bins);
+        std::vector<Bins> part(L * std::size_t(T));
+        fork_join(T, [&](int t) {
+            for (std::size_t i = 0; i < L; ++i)
+                bin_refs(refs(level[i]), chunk(i, t), chunk(i, t + 1), maps[i], part[i * std::size_t(T) + std::size_t(t)]);
+        });
+        struct Split {
+            Decision d;
+            Range left{}, right{};
+            std::vector<std::uint32_t> left_at, right_at;  // per chunk: where its records go
+        };
+        std::vector<Split> split(L);
         Bins total;
-        const Decision d = decide(
-            r,
-            [&](Bins& bins) {
-                fork_join(T, [&](int t) {
-                    chunk_bins_[t].clear_all(opt_.bins);
-                    bin_refs(src, chunk(t), chunk(t + 1), map, chunk_bins_[t]);
-                });
-                bins.clear_all(opt_.bins);
-                for (int t = 0; t < T; ++t) bins.merge(chunk_bins_[t], opt_.bins);
-                bins.list_all(opt_.bins);
-            },
-            total);
-        Range left{}, right{};
-        std::uint32_t m;
-        bool in_tmp = r.in_tmp;
-        if (d.kind == Decision::Sah) {
+        for (std::size_t i = 0; i < L; ++i) {
+            const Range& r = level[i];
+            Split& sp = split[i];
+            const Bins* p = &part[i * std::size_t(T)];
+            sp.d = decide(
+                r,
+                [&](Bins& bins) {
+                    bins.clear_all(opt_.bins);
+                    for (int t = 0; t < T; ++t) bins.merge(p[t], opt_.bins);
+                    bins.list_all(opt_.bins);
+                },
+                total);
+            if (sp.d.kind != Decision::Sah) continue;
             // Each chunk's left count is known from its bins: scatter without a counting pass.
-            std::vector<std::uint32_t> left_at(std::size_t(T) + 1), right_at(std::size_t(T) + 1);
+            child_boxes(total, sp.d, sp.left.box, sp.right.box);
             std::uint32_t left_total = 0;
             for (int t = 0; t < T; ++t)
-                for (int k = 0; k <= d.bin; ++k) left_total += chunk_bins_[t].count[d.axis][k];
-            left_at[0] = r.begin;
-            right_at[0] = r.begin + left_total;
+                for (int k = 0; k <= sp.d.bin; ++k) left_total += p[t].count[sp.d.axis][k];
+            sp.left_at.assign(std::size_t(T) + 1, r.begin);
+            sp.right_at.assign(std::size_t(T) + 1, r.begin + left_total);
             for (int t = 0; t < T; ++t) {
                 std::uint32_t l = 0;
-                for (int k = 0; k <= d.bin; ++k) l += chunk_bins_[t].count[d.axis][k];
-                left_at[t + 1] = left_at[t] + l;
-                right_at[t + 1] = right_at[t] + (chunk(t + 1) - chunk(t) - l);
+                for (int k = 0; k <= sp.d.bin; ++k) l += p[t].count[sp.d.axis][k];
+                sp.left_at[t + 1] = sp.left_at[t] + l;
+                sp.right_at[t + 1] = sp.right_at[t] + (chunk(i, t + 1) - chunk(i, t) - l);
             }
-            Ref* dst = r.in_tmp ? main_ : tmp_;
-            std::vector<Box4> lc(static_cast<std::size_t>(T)), rc(static_cast<std::size_t>(T));
-            fork_join(T, [&](int t) {
-                std::uint32_t li = left_at[t], ri = right_at[t];
+        }
+        std::vector<Box4> lc(L * std::size_t(T)), rc(L * std::size_t(T));
+        fork_join(T, [&](int t) {
+            for (std::size_t i = 0; i < L; ++i) {
+                const Split& sp = split[i];
+                if (sp.d.kind != Decision::Sah) continue;
+                const Range& r = level[i];
+                const Ref* src = refs(r);
+                Ref* dst = r.in_tmp ? main_ : tmp_;
+                std::uint32_t li = sp.left_at[t], ri = sp.right_at[t];
                 Box4 lcb, rcb;
-                for (std::uint32_t i = chunk(t); i < chunk(t + 1); ++i) {
-                    const F4 lo = load3(src[i].lo), hi = load3(src[i].hi), c = centroid(lo, hi);
+                for (std::uint32_t k = chunk(i, t); k < chunk(i, t + 1); ++k) {
+                    const F4 lo = load3(src[k].lo), hi = load3(src[k].hi), c = centroid(lo, hi);
                     alignas(16) std::int32_t idx[4];
-                    map(c, idx);
-                    if (idx[d.axis] <= d.bin) {
-                        dst[li++] = src[i];
+                    maps[i](c, idx);
+                    if (idx[sp.d.axis] <= sp.d.bin) {
+                        dst[li++] = src[k];
                         lcb.grow_point(c);
                     } else {
-                        dst[ri++] = src[i];
+                        dst[ri++] = src[k];
                         rcb.grow_point(c);
                     }
                 }
-                lc[t] = lcb;
-                rc[t] = rcb;
-            });
-            m = r.begin + left_total;
-            in_tmp = !r.in_tmp;
-            child_boxes(total, d, left.box, right.box);
-            for (int t = 0; t < T; ++t) {
-                left.cbox.grow(lc[t]);
-                right.cbox.grow(rc[t]);
+                lc[i * std::size_t(T) + std::size_t(t)] = lcb;
+                rc[i * std::size_t(T) + std::size_t(t)] = rcb;
             }
-        } else {
-            m = median_split(r, d.axis, left, right);  // d.kind is Median: a big node never becomes a leaf
-        }
-        set_children(r, m, in_tmp, left, right);
-        interior(r, m);
-        for (const Range* c : {&left, &right}) {
-            if (c->end - c->begin >= kBigNode)
-                big_node(*c, tasks);
-            else
-                tasks.push_back(*c);
+        });
+        for (std::size_t i = 0; i < L; ++i) {
+            const Range& r = level[i];
+            Split& sp = split[i];
+            std::uint32_t m;
+            bool in_tmp = r.in_tmp;
+            if (sp.d.kind == Decision::Sah) {
+                m = sp.right_at[0];
+                in_tmp = !r.in_tmp;
+                for (int t = 0; t < T; ++t) {
+                    sp.left.cbox.grow(lc[i * std::size_t(T) + std::size_t(t)]);
+                    sp.right.cbox.grow(rc[i * std::size_t(T) + std::size_t(t)]);
+                }
+            } else {
+                m = median_split(r, sp.d.axis, sp.left, sp.right);  // a big node never becomes a leaf
+            }
+            set_children(r, m, in_tmp, sp.left, sp.right);
+            interior(r, m);
+            for (const Range* c : {&sp.left, &sp.right}) (c->end - c->begin >= kBigNode ? next : tasks).push_back(*c);
         }
     }
 
