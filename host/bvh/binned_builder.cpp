@@ -163,6 +163,8 @@ public:
         : opt_(opt), main_(main), tmp_(tmp), nodes_(nodes) {}
 
     std::atomic<std::size_t> leaves{0};
+    std::vector<Subtree> subtrees;
+    std::size_t top_interior = 0;
 
     void build(const Range& root) {
         std::vector<Range> tasks, level, next;
@@ -180,9 +182,12 @@ public:
         const int workers = int(std::min<std::size_t>(std::size_t(opt_.threads), tasks.size()));
         std::vector<std::unique_ptr<Bins>> worker_bins(std::size_t(std::max(workers, 1)));
         for (auto& b : worker_bins) b = std::make_unique<Bins>();
+        subtrees.resize(tasks.size());
         fork_join(workers, [&](int w) {
-            for (std::size_t i; (i = next_task.fetch_add(1)) < tasks.size();) subtree(tasks[i], *worker_bins[w]);
+            for (std::size_t i; (i = next_task.fetch_add(1)) < tasks.size();)
+                subtrees[i] = {tasks[i].slot, tasks[i].begin, tasks[i].depth, subtree(tasks[i], *worker_bins[w])};
         });
+        std::sort(subtrees.begin(), subtrees.end(), [](const Subtree& a, const Subtree& b) { return a.begin < b.begin; });
     }
 
 private:
@@ -338,6 +343,7 @@ private:
     void big_level(const std::vector<Range>& level, std::vector<Range>& next, std::vector<Range>& tasks) {
         const int T = opt_.threads;
         const std::size_t L = level.size();
+        top_interior += L;  // a large node is never a leaf
         auto chunk = [&](std::size_t i, int t) {
             const Range& r = level[i];
             return r.begin + std::uint32_t(std::uint64_t(r.end - r.begin) * std::uint32_t(t) / std::uint32_t(T));
@@ -431,8 +437,8 @@ private:
         }
     }
 
-    // A whole subtree on one thread: depth first, partitions in place.
-    void subtree(const Range& root, Bins& bins) {
+    // A whole subtree on one thread: depth first, partitions in place. Returns its leaf count.
+    std::size_t subtree(const Range& root, Bins& bins) {
         Range stack[2 * CLP_BVH_MAX_DEPTH + 4];
         int sp = 0;
         std::size_t leaf_count = 0;
@@ -488,6 +494,7 @@ private:
         }
         leaves += leaf_count;
         if (root.in_tmp) std::memcpy(main_ + root.begin, tmp_ + root.begin, (root.end - root.begin) * sizeof(Ref));
+        return leaf_count;
     }
 };
 
@@ -542,6 +549,8 @@ Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& o
     Builder builder(opt, refs, tmp.get(), tree.nodes.get());
     builder.build(root);
     tree.leaf_count = builder.leaves;
+    tree.subtrees = std::move(builder.subtrees);
+    tree.top_interior = builder.top_interior;
     return tree;
 }
 

@@ -35,11 +35,20 @@ struct TreeNode {
     std::uint32_t right;  // interior: the right child's slot (the left child is the next slot)
 };
 
+// A subtree one thread built whole (the tree above them: the large nodes).
+struct Subtree {
+    std::uint32_t slot = 0, begin = 0;
+    int depth = 1;           // of its root, the tree's root = 1
+    std::size_t leaves = 0;  // in it
+};
+
 struct Tree {
     std::unique_ptr<TreeNode[]> nodes;  // slot 0 is the root; unused slots are left unwritten
     std::unique_ptr<Ref[]> refs;        // in leaf order
     std::size_t ref_count = 0;
     std::size_t leaf_count = 0;
+    std::vector<Subtree> subtrees;  // left to right (by first record)
+    std::size_t top_interior = 0;   // interior nodes above the subtrees
 };
 
 // options: validated, threads >= 1. Throws clpath::Error for a non-finite vertex.

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -20,21 +21,69 @@ float node_area(const TreeNode& n) {
     return 2 * (ex * ey + ey * ez + ez * ex);
 }
 
-// Flattens the binary tree: one BvhNode per interior node, leaves inline in
-// their parent's slot (Aila & Laine 2009 layout).
-void flatten(const TreeNode* tree, Bvh& bvh, float traversal_cost) {
-    const float root_area = std::max(node_area(tree[0]), 1e-30f);
-    auto set_slot = [&](BvhNode& node, int slot, const TreeNode& c, int child_index) {
-        float* lo = slot == 0 ? node.lo0 : node.lo1;
-        float* hi = slot == 0 ? node.hi0 : node.hi1;
-        for (int a = 0; a < 3; ++a) {
-            lo[a] = c.lo[a];
-            hi[a] = c.hi[a];
-        }
-        const int child = c.count ? ~int(c.first) : child_index;
-        (slot == 0 ? node.child0 : node.child1) = child;
-        (slot == 0 ? node.count0 : node.count1) = c.count;
+void set_slot(BvhNode& node, int slot, const TreeNode& c, int child_index) {
+    float* lo = slot == 0 ? node.lo0 : node.lo1;
+    float* hi = slot == 0 ? node.hi0 : node.hi1;
+    for (int a = 0; a < 3; ++a) {
+        lo[a] = c.lo[a];
+        hi[a] = c.hi[a];
+    }
+    const int child = c.count ? ~int(c.first) : child_index;
+    (slot == 0 ? node.child0 : node.child1) = child;
+    (slot == 0 ? node.count0 : node.count1) = c.count;
+}
+
+struct FlatStats {
+    double cost = 0;  // SAH, over the root's area
+    std::size_t leaves = 0;
+    int max_depth = 0;
+};
+
+// Depth first from the interior node at slot root, its BvhNode at index
+// first, the nodes below from first + 1 on (a node's children get their
+// indices together, when it is visited). offset_of(slot): the BvhNode index
+// of a subtree flattened apart, or -1 to descend into it here.
+template <class OffsetOf>
+int flatten_from(const TreeNode* tree, std::uint32_t root, int depth, int first, BvhNode* out, float root_area,
+                 float traversal_cost, FlatStats& st, OffsetOf offset_of) {
+    struct Item {
+        std::uint32_t slot;
+        int node, depth;
     };
+    Item stack[2 * CLP_BVH_MAX_DEPTH + 4];  // grows by at most one per level
+    int sp = 0;
+    stack[sp++] = {root, first, depth};
+    int next = first + 1;
+    while (sp > 0) {
+        const Item it = stack[--sp];
+        const TreeNode& b = tree[it.slot];
+        st.cost += traversal_cost * node_area(b) / root_area;
+        st.max_depth = std::max(st.max_depth, it.depth);
+        const std::uint32_t kids[2] = {it.slot + 1, b.right};
+        for (int s = 0; s < 2; ++s) {
+            const TreeNode& c = tree[kids[s]];
+            int index = 0;
+            if (c.count) {
+                ++st.leaves;
+                st.cost += double(c.count) * node_area(c) / root_area;
+            } else if ((index = offset_of(kids[s])) < 0) {
+                index = next++;
+                stack[sp++] = {kids[s], index, it.depth + 1};
+            }
+            set_slot(out[it.node], s, c, index);
+        }
+    }
+    return next;
+}
+
+// Flattens the binary tree: one BvhNode per interior node, leaves inline in
+// their parent's slot (Aila & Laine 2009 layout). The nodes above the
+// subtrees first, then each subtree's, left to right, each flattened by a
+// thread at an offset known from the leaf counts; the sums are taken in a
+// fixed order, so the result does not depend on the threads.
+void flatten(const bvh_build::Tree& t, Bvh& bvh, float traversal_cost, int threads) {
+    const TreeNode* tree = t.nodes.get();
+    const float root_area = std::max(node_area(tree[0]), 1e-30f);
     BvhStats& st = bvh.stats;
     if (tree[0].count) {  // the whole tree is one leaf
         BvhNode root{};
@@ -48,37 +97,51 @@ void flatten(const TreeNode* tree, Bvh& bvh, float traversal_cost) {
         st.sah_cost = traversal_cost + tree[0].count;
         return;
     }
-    // Depth-first, explicit stack: (tree slot, its BvhNode index, depth).
-    struct Item {
+    // Where each subtree that is not a single leaf starts.
+    struct Start {
         std::uint32_t slot;
-        int node, depth;
+        int offset;
+        std::size_t subtree;
     };
-    std::vector<Item> stack{{0, 0, 1}};
-    stack.reserve(2 * CLP_BVH_MAX_DEPTH + 2);
-    bvh.nodes.emplace_back();
-    double cost = 0;
-    while (!stack.empty()) {
-        const Item it = stack.back();
-        stack.pop_back();
-        const TreeNode& b = tree[it.slot];
-        cost += traversal_cost * node_area(b) / root_area;
-        st.max_depth = std::max(st.max_depth, it.depth);
-        const std::uint32_t kids[2] = {it.slot + 1, b.right};
-        for (int s = 0; s < 2; ++s) {
-            const TreeNode& c = tree[kids[s]];
-            int index = 0;
-            if (c.count) {
-                ++st.leaf_count;
-                cost += double(c.count) * node_area(c) / root_area;
-            } else {
-                index = int(bvh.nodes.size());
-                bvh.nodes.emplace_back();
-                stack.push_back({kids[s], index, it.depth + 1});
-            }
-            set_slot(bvh.nodes[std::size_t(it.node)], s, c, index);
-        }
+    std::vector<Start> starts;
+    std::size_t total = t.top_interior;
+    for (std::size_t i = 0; i < t.subtrees.size(); ++i) {
+        const bvh_build::Subtree& s = t.subtrees[i];
+        if (tree[s.slot].count) continue;  // a leaf: its parent holds it inline
+        starts.push_back({s.slot, int(total), i});
+        total += s.leaves - 1;
     }
-    st.sah_cost = cost;
+    bvh.nodes.resize(total);
+    BvhNode* out = bvh.nodes.data();
+    std::vector<FlatStats> part(starts.size());
+    FlatStats top;
+    if (t.top_interior > 0) {
+        std::vector<Start> by_slot = starts;
+        std::sort(by_slot.begin(), by_slot.end(), [](const Start& a, const Start& b) { return a.slot < b.slot; });
+        const int end = flatten_from(tree, 0, 1, 0, out, root_area, traversal_cost, top, [&](std::uint32_t slot) {
+            const auto it = std::lower_bound(by_slot.begin(), by_slot.end(), slot,
+                                             [](const Start& a, std::uint32_t v) { return a.slot < v; });
+            return it != by_slot.end() && it->slot == slot ? it->offset : -1;
+        });
+        if (std::size_t(end) != t.top_interior) throw std::logic_error("BVH flatten: the top levels' node count differs");
+    }
+    std::atomic<std::size_t> next{0};
+    bvh_build::fork_join(std::min(threads, int(std::max<std::size_t>(starts.size(), 1))), [&](int) {
+        for (std::size_t k; (k = next.fetch_add(1)) < starts.size();) {
+            const bvh_build::Subtree& s = t.subtrees[starts[k].subtree];
+            flatten_from(tree, s.slot, s.depth, starts[k].offset, out, root_area, traversal_cost, part[k],
+                         [](std::uint32_t) { return -1; });
+        }
+    });
+    FlatStats all = top;
+    for (const FlatStats& p : part) {
+        all.cost += p.cost;
+        all.leaves += p.leaves;
+        all.max_depth = std::max(all.max_depth, p.max_depth);
+    }
+    st.leaf_count = all.leaves;
+    st.max_depth = all.max_depth;
+    st.sah_cost = all.cost;
 }
 
 }  // namespace
@@ -103,8 +166,7 @@ Bvh build_bvh(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& opt
 
     const bvh_build::Tree tree = bvh_build::build_tree(vertices, opt);
     Bvh bvh;
-    bvh.nodes.reserve(std::max<std::size_t>(tree.leaf_count, 2) - 1);  // one BvhNode per interior node
-    flatten(tree.nodes.get(), bvh, opt.traversal_cost);
+    flatten(tree, bvh, opt.traversal_cost, opt.threads);
     bvh.triangles.resize(n);
     const bvh_build::Ref* refs = tree.refs.get();
     bvh_build::fork_join(opt.threads, [&](int t) {
