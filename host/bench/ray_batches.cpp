@@ -109,7 +109,7 @@ BatchAgreement check_any(const Bvh& reference, const std::vector<BatchRay>& rays
     return a;
 }
 
-// Embree's answers in the device's form (BatchHit.tri indexes the leaf-ordered
+// Embree's answers in the device's form (Hit.tri indexes the leaf-ordered
 // triangles), so check_closest and check_any judge both the same way.
 std::vector<std::uint32_t> leaf_index_of_prim(const std::vector<TriVerts>& tris) {
     std::vector<std::uint32_t> at(tris.size());
@@ -131,7 +131,7 @@ EmbreeBatch embree_closest(EmbreeBaseline& embree, const Bvh& reference, const s
     std::vector<float> t;
     EmbreeBatch e;
     take_timing(e, embree.closest(rays, o.launches, prim, t));
-    std::vector<BatchHit> hits(rays.size());
+    std::vector<Hit> hits(rays.size());
     for (std::size_t i = 0; i < rays.size(); ++i) {
         hits[i].t = t[i];
         hits[i].b1 = hits[i].b2 = 0;
