@@ -11,6 +11,8 @@ fi
 # clang only recommends it, and recommends are not installed here.
 # xauth: xvfb-run (the viewer tests) needs it; xvfb only recommends it.
 # libembree-dev: the CPU baseline of clpath bench rays (optional at build time).
+# libopenmpi-dev, openmpi-bin: rendering over MPI ranks (optional at build
+# time, but the test suite checks it).
 # oclgrind: a second OpenCL implementation, a simulator that checks every kernel
 # for out-of-bounds and uninitialised accesses and data races (tests/kernels/).
 packages="
@@ -21,6 +23,7 @@ packages="
     xvfb xauth libimgui-dev glmark2-data
     python3-numpy python3-matplotlib
     libembree-dev
+    libopenmpi-dev openmpi-bin
 "
 missing=""
 for p in $packages; do
