@@ -10,7 +10,7 @@
 #   writes benchmarks/results/RESULT_DIR_NAME/bvh-build/{log.txt,runs.csv}
 set -u
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
-DEV_DIR=${1:-pocl-epyc-2core}
+DEV_DIR=${1:-pocl-xeon-2core}
 B=${2:-$ROOT/build}
 CLPATH=$B/clpath
 OUT=$ROOT/benchmarks/results/$DEV_DIR/bvh-build
