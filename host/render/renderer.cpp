@@ -86,7 +86,8 @@ Renderer::Renderer(Context& ctx, const Scene& scene, const RenderSettings& setti
     const std::size_t normal_bytes = std::max<std::size_t>(16, scene.normals.size() * 12);
     const std::size_t light_bytes = std::max<std::size_t>(1, light_count_) * sizeof(Light);
     const std::size_t alias_bytes = std::max<std::size_t>(1, light_count_) * sizeof(AliasEntry);
-    ctx.check_fits({{"BVH nodes", bvh.nodes.size() * sizeof(BvhNode)},
+    const std::vector<unsigned char> device_node_bytes = device_nodes(settings.accel, bvh);
+    ctx.check_fits({{"BVH nodes", device_node_bytes.size()},
                     {"triangles", bvh.triangles.size() * sizeof(TriVerts)},
                     {"triangle materials", scene.triangle_material.size() * sizeof(std::uint32_t)},
                     {"materials", scene.materials.size() * sizeof(Material)},
@@ -97,7 +98,7 @@ Renderer::Renderer(Context& ctx, const Scene& scene, const RenderSettings& setti
                     {"accumulation film", pixels * sizeof(AccumPixel)},
                     {"linear image", pixels * 16},
                     {"sRGB image", pixels * 4}});
-    nodes_ = ctx.buffer(bvh.nodes.size() * sizeof(BvhNode), CL_MEM_READ_ONLY, "BVH nodes", bvh.nodes.data());
+    nodes_ = ctx.buffer(device_node_bytes.size(), CL_MEM_READ_ONLY, "BVH nodes", device_node_bytes.data());
     tris_ = ctx.buffer(bvh.triangles.size() * sizeof(TriVerts), CL_MEM_READ_ONLY, "triangles",
                        bvh.triangles.data());
     tri_material_ = ctx.buffer(scene.triangle_material.size() * sizeof(std::uint32_t), CL_MEM_READ_ONLY,

@@ -8,10 +8,10 @@ using namespace clpath;
 
 TEST(SharedStructs, SizesAgreeOnHostAndDevice) {
     Kernel k = test::device().kernel(test::probe_program(), "probe_struct_sizes");
-    Buffer out = test::device().buffer(11 * sizeof(std::uint32_t), CL_MEM_READ_WRITE, "sizes");
+    Buffer out = test::device().buffer(12 * sizeof(std::uint32_t), CL_MEM_READ_WRITE, "sizes");
     k.arg(0, out);
     test::run(k, 1);
-    auto sizes = test::download<std::uint32_t>(out, 11);
+    auto sizes = test::download<std::uint32_t>(out, 12);
     EXPECT_EQ(sizes[0], sizeof(BvhNode));
     EXPECT_EQ(sizes[1], sizeof(TriVerts));
     EXPECT_EQ(sizes[2], sizeof(Material));
@@ -23,4 +23,5 @@ TEST(SharedStructs, SizesAgreeOnHostAndDevice) {
     EXPECT_EQ(sizes[8], sizeof(AliasEntry));
     EXPECT_EQ(sizes[9], sizeof(BatchRay));
     EXPECT_EQ(sizes[10], sizeof(BatchHit));
+    EXPECT_EQ(sizes[11], sizeof(Bvh4Node));
 }
