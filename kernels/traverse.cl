@@ -76,6 +76,9 @@ inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tr
     hit.t = tmax;
     hit.tri = -1;
     hit.b1 = hit.b2 = 0.0f;
+    /* Node indices only: keeping each entry distance too, to drop nodes
+     * entered beyond a hit found after the push, cost more than it saved
+     * (bunny, PoCL) and doubles the private memory. */
     int stack[CLP_BVH4_STACK];
     int sp = 0;
     int node = 0;
@@ -86,19 +89,24 @@ inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tr
         int4 child = as_int4(n[6]);
         uint4 count = as_uint4(n[7]);
         d = select(d, (float4)(INFINITY), child == 0); /* empty slots */
-        CLP_SORT2(0, 1, s1023)
-        CLP_SORT2(2, 3, s0132)
-        CLP_SORT2(0, 2, s2103)
-        CLP_SORT2(1, 3, s0321)
-        CLP_SORT2(1, 2, s0213)
-        CLP_VISIT_LEAF(0)
-        CLP_VISIT_LEAF(1)
-        CLP_VISIT_LEAF(2)
-        CLP_VISIT_LEAF(3)
-        CLP_PUSH_INTERIOR(3)
-        CLP_PUSH_INTERIOR(2)
-        CLP_PUSH_INTERIOR(1)
-        CLP_PUSH_INTERIOR(0)
+        if (any(d < hit.t)) {
+            /* Any hit will do for shadow rays: the order only matters to the closest. */
+            if (!any_hit) {
+                CLP_SORT2(0, 1, s1023)
+                CLP_SORT2(2, 3, s0132)
+                CLP_SORT2(0, 2, s2103)
+                CLP_SORT2(1, 3, s0321)
+                CLP_SORT2(1, 2, s0213)
+            }
+            CLP_VISIT_LEAF(0)
+            CLP_VISIT_LEAF(1)
+            CLP_VISIT_LEAF(2)
+            CLP_VISIT_LEAF(3)
+            CLP_PUSH_INTERIOR(3)
+            CLP_PUSH_INTERIOR(2)
+            CLP_PUSH_INTERIOR(1)
+            CLP_PUSH_INTERIOR(0)
+        }
         if (sp == 0) break;
         node = stack[--sp];
     }
