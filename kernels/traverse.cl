@@ -7,12 +7,11 @@
  * tree the builder and the widening allow), nearest child first. Nodes hold
  * their four children's boxes, so each step tests four boxes from one
  * 128-byte fetch (shared_structs.h, Bvh4Node). */
+#ifndef CLP_TRAVERSE_CL
+#define CLP_TRAVERSE_CL
 
-typedef struct {
-    float t;
-    float b1, b2; /* barycentric weights of v1 and v2 */
-    int tri;      /* index into the leaf-ordered triangles, -1 for a miss */
-} Hit;
+#include "common.h"
+#include "intersect.cl"
 
 /* TriVerts and BvhNode are rows of four 4-byte fields at 16-byte offsets
  * (shared_structs.h asserts it): one aligned float4 load fetches a vertex or
@@ -146,3 +145,5 @@ inline Hit traverse_bvh(global const AccelNode* nodes, global const TriVerts* tr
     return traverse_tree(nodes, tris, r, tmax, any_hit, visits);
 #endif
 }
+
+#endif
