@@ -5,7 +5,7 @@
 namespace clpath {
 namespace {
 // Indexed by CLP_MAT_*; upper-cased in the CLP_HAS_MAT_* switches.
-const char* const kMaterialNames[CLP_MAT_KIND_COUNT] = {"diffuse", "mirror", "conductor", "dielectric"};
+const char* const kMaterialNames[CLP_MAT_KIND_COUNT] = {"diffuse", "mirror", "conductor", "dielectric", "gltf"};
 
 std::string upper(std::string s) {
     for (char& c : s) c = char(std::toupper(static_cast<unsigned char>(c)));
