@@ -77,7 +77,10 @@ typedef std::uint32_t uint;
 #define CLP_NO_LIGHT 0xffffffffu
 
 /* FrameParams.scene_flags. */
-#define CLP_SCENE_NORMALS 1u /* the normals buffer holds per-vertex shading normals */
+#define CLP_SCENE_NORMALS 1u  /* the normals buffer holds per-vertex shading normals */
+#define CLP_SCENE_UVS 2u      /* the attribute buffer holds texture coordinates (6 floats per triangle) */
+#define CLP_SCENE_TANGENTS 4u /* ... then tangents (xyz and sign, 12 floats per triangle) */
+#define CLP_SCENE_COLORS 8u   /* ... then vertex colours (RGBA, 12 floats per triangle) */
 
 /* Material flags. */
 #define CLP_MATF_TWO_SIDED_EMISSION 1u /* emits from the back face too */
@@ -201,7 +204,8 @@ typedef struct {
     float env_rot_sin;
     uint env_height;
     uint scene_flags;      /* CLP_SCENE_*: what the scene really has, for kernels compiled with every feature */
-    uint pad0, pad1, pad2;
+    uint attr_stride;      /* floats per triangle in the attribute buffer (CLP_SCENE_UVS, _TANGENTS, _COLORS) */
+    uint pad1, pad2;
 } FrameParams;
 
 /* Counters the kernels bump with atomics; the host reads and clears them per launch. */

@@ -5,7 +5,14 @@
  *
  * BVH traversal: a stack of CLP_BVH_MAX_DEPTH entries (the builder guarantees
  * no deeper tree), nearest child first. Nodes hold both children's boxes
- * (Aila & Laine 2009), so each step tests two boxes from one 64-byte fetch. */
+ * (Aila & Laine 2009), so each step tests two boxes from one 64-byte fetch.
+ * With CLP_HAS_ALPHA every function takes the alpha scene as a last
+ * argument (CLP_ALPHA_PARAM, textures.cl) and skips cut-out hits. */
+
+#ifndef CLP_ALPHA_PARAM /* programs without textures.cl (ray batches) */
+#define CLP_ALPHA_PARAM
+#define CLP_ALPHA_ARG
+#endif
 
 typedef struct {
     float t;
@@ -13,12 +20,15 @@ typedef struct {
     int tri;      /* index into the leaf-ordered triangles, -1 for a miss */
 } Hit;
 
-inline int intersect_leaf(const RayPre* r, global const TriVerts* tris, uint first, uint count, Hit* hit) {
+inline int intersect_leaf(const RayPre* r, global const TriVerts* tris, uint first, uint count, Hit* hit CLP_ALPHA_PARAM) {
     int found = 0;
     for (uint i = first; i < first + count; ++i) {
         global const TriVerts* tv = &tris[i];
         float t, b1, b2;
         if (intersect_triangle(r, load3g(tv->v0), load3g(tv->v1), load3g(tv->v2), hit->t, &t, &b1, &b2)) {
+#ifdef CLP_HAS_ALPHA
+            if (!alpha_keeps_hit(alpha, tv->prim, b1, b2, r)) continue; /* a cut-out: as if not there (textures.cl) */
+#endif
             hit->t = t;
             hit->b1 = b1;
             hit->b2 = b2;
@@ -33,7 +43,7 @@ inline int intersect_leaf(const RayPre* r, global const TriVerts* tris, uint fir
  * the traversal heat map and benchmarks. When any_hit is set, returns at the
  * first hit found (shadow rays): the compiler folds it for constant arguments. */
 inline Hit traverse_tree(global const BvhNode* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
-                         int any_hit, uint* visits) {
+                         int any_hit, uint* visits CLP_ALPHA_PARAM) {
     Hit hit;
     hit.t = tmax;
     hit.tri = -1;
@@ -49,11 +59,11 @@ inline Hit traverse_tree(global const BvhNode* nodes, global const TriVerts* tri
         int c0 = n->child0, c1 = n->child1;
         /* Leaves are intersected at once; only interior children are descended. */
         if (t0 < INFINITY && c0 < 0) {
-            if (intersect_leaf(r, tris, (uint)~c0, n->count0, &hit) && any_hit) return hit;
+            if (intersect_leaf(r, tris, (uint)~c0, n->count0, &hit CLP_ALPHA_ARG) && any_hit) return hit;
             t0 = INFINITY;
         }
         if (t1 < INFINITY && c1 < 0) {
-            if (intersect_leaf(r, tris, (uint)~c1, n->count1, &hit) && any_hit) return hit;
+            if (intersect_leaf(r, tris, (uint)~c1, n->count1, &hit CLP_ALPHA_ARG) && any_hit) return hit;
             t1 = INFINITY;
         }
         /* A leaf hit may have shortened hit.t; a child entered beyond it is pruned. */
@@ -79,7 +89,7 @@ inline Hit traverse_tree(global const BvhNode* nodes, global const TriVerts* tri
  * The list ends at the first slot whose child is not a leaf. Same contract as
  * traverse_tree. */
 inline Hit traverse_flat(global const BvhNode* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
-                         int any_hit, uint* visits) {
+                         int any_hit, uint* visits CLP_ALPHA_PARAM) {
     Hit hit;
     hit.t = tmax;
     hit.tri = -1;
@@ -89,21 +99,21 @@ inline Hit traverse_flat(global const BvhNode* nodes, global const TriVerts* tri
         if (visits) ++*visits;
         if (n->child0 >= 0) break;
         if (intersect_box(r, load3g(n->lo0), load3g(n->hi0), hit.t) < INFINITY &&
-            intersect_leaf(r, tris, (uint)~n->child0, n->count0, &hit) && any_hit)
+            intersect_leaf(r, tris, (uint)~n->child0, n->count0, &hit CLP_ALPHA_ARG) && any_hit)
             return hit;
         if (n->child1 >= 0) break;
         if (intersect_box(r, load3g(n->lo1), load3g(n->hi1), hit.t) < INFINITY &&
-            intersect_leaf(r, tris, (uint)~n->child1, n->count1, &hit) && any_hit)
+            intersect_leaf(r, tris, (uint)~n->child1, n->count1, &hit CLP_ALPHA_ARG) && any_hit)
             return hit;
     }
     return hit;
 }
 
 inline Hit traverse_bvh(global const BvhNode* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
-                        int any_hit, uint* visits) {
+                        int any_hit, uint* visits CLP_ALPHA_PARAM) {
 #ifdef CLP_ACCEL_FLAT
-    return traverse_flat(nodes, tris, r, tmax, any_hit, visits);
+    return traverse_flat(nodes, tris, r, tmax, any_hit, visits CLP_ALPHA_ARG);
 #else
-    return traverse_tree(nodes, tris, r, tmax, any_hit, visits);
+    return traverse_tree(nodes, tris, r, tmax, any_hit, visits CLP_ALPHA_ARG);
 #endif
 }

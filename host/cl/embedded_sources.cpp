@@ -29,8 +29,8 @@ std::string program_source(const std::vector<std::string>& files) {
 
 const std::vector<std::string>& renderer_kernel_files() {
     static const std::vector<std::string> files = {
-        "rng.cl", "sampling.cl", "camera.cl", "intersect.cl", "traverse.cl",
-        "materials.cl", "lights.cl", "film.cl", "integrator.cl"};
+        "rng.cl", "sampling.cl", "camera.cl", "intersect.cl", "textures.cl", "traverse.cl",
+        "materials.cl", "material_gltf.cl", "surface_params.cl", "lights.cl", "film.cl", "integrator.cl"};
     return files;
 }
 

@@ -7,6 +7,7 @@
 #include "cl/embedded_sources.hpp"
 #include "render/environment_map.hpp"
 #include "render/light_table.hpp"
+#include "render/surface_buffers.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -36,7 +37,13 @@ void validate_scene(const Scene& s) {
         if (m.kind >= CLP_MAT_KIND_COUNT) throw Error("material '" + name + "': unknown kind");
         if (m.kind == CLP_MAT_DIELECTRIC && !(m.ior > 0))
             throw Error("material '" + name + "': index of refraction must be positive");
+        for (int t : m.texture)
+            if (t != CLP_NO_TEXTURE && (t < 0 || std::size_t(t) >= s.textures.size()))
+                throw Error("internal: material '" + name + "' names texture " + std::to_string(t));
     }
+    if ((!s.uvs.empty() && s.uvs.size() != s.vertices.size()) || (!s.tangents.empty() && s.tangents.size() != s.vertices.size()) ||
+        (!s.colors.empty() && s.colors.size() != s.vertices.size()))
+        throw Error("internal: texture coordinates, tangents or colours for some vertices only");
 }
 
 }  // namespace
@@ -94,6 +101,8 @@ Renderer::Renderer(Context& ctx, const Scene& scene, const RenderSettings& setti
                     {"lights", light_bytes + alias_bytes},
                     {"environment image", env.pixels.size() * sizeof(float)},
                     {"environment distribution", env.cdf.size() * sizeof(float)},
+                    {"surface attributes", surface_attribute_bytes(scene)},
+                    {"textures", texture_bytes(scene)},
                     {"accumulation film", pixels * sizeof(AccumPixel)},
                     {"linear image", pixels * 16},
                     {"sRGB image", pixels * 4}});
@@ -117,6 +126,19 @@ Renderer::Renderer(Context& ctx, const Scene& scene, const RenderSettings& setti
                              env.pixels.data());
     env_cdf_ = ctx.buffer(env.cdf.size() * sizeof(float), CL_MEM_READ_ONLY, "environment distribution",
                           env.cdf.data());
+    {
+        // Texture coordinates, tangents, colours and textures: a 16-byte stand-in when the scene has none.
+        const SurfaceBuffers surf = pack_surface_buffers(scene);
+        attr_stride_ = surf.attr_stride;
+        surface_flags_ = surf.scene_flags;
+        auto upload = [&](std::size_t bytes, const void* data, const char* what) {
+            static const std::uint32_t none[4] = {0, 0, 0, 0};
+            return bytes ? ctx.buffer(bytes, CL_MEM_READ_ONLY, what, data) : ctx.buffer(16, CL_MEM_READ_ONLY, what, none);
+        };
+        attrs_ = upload(surf.attrs.size() * sizeof(float), surf.attrs.data(), "surface attributes");
+        tex_desc_ = upload(surf.textures.size() * sizeof(TextureDesc), surf.textures.data(), "texture descriptors");
+        texels_ = upload(surf.texels.size() * sizeof(std::uint32_t), surf.texels.data(), "texels");
+    }
     params_ = ctx.buffer(sizeof(FrameParams), CL_MEM_READ_ONLY, "frame parameters");
     counters_ = ctx.buffer(sizeof(Counters), CL_MEM_READ_WRITE, "counters");
     accum_ = ctx.buffer(pixels * sizeof(AccumPixel), CL_MEM_READ_WRITE, "accumulation film");
@@ -202,12 +224,14 @@ void Renderer::launch_band(std::uint32_t first_pixel, std::uint32_t pixel_count,
     fp.env_scale = env_scale_;
     fp.env_rot_cos = std::cos(env_rotation_);
     fp.env_rot_sin = std::sin(env_rotation_);
-    fp.scene_flags = scene_features_.normals ? CLP_SCENE_NORMALS : 0u;
+    fp.scene_flags = (scene_features_.normals ? CLP_SCENE_NORMALS : 0u) | surface_flags_;
+    fp.attr_stride = attr_stride_;
     const Counters zero{};
     ctx_.write(params_, &fp, sizeof fp);
     ctx_.write(counters_, &zero, sizeof zero);
     render_.arg(0, nodes_).arg(1, tris_).arg(2, tri_material_).arg(3, materials_).arg(4, normals_).arg(5, lights_);
     render_.arg(6, alias_).arg(7, env_pixels_).arg(8, env_cdf_).arg(9, params_).arg(10, accum_).arg(11, counters_);
+    render_.arg(12, attrs_).arg(13, tex_desc_).arg(14, texels_);
     const auto t0 = std::chrono::steady_clock::now();
     ctx_.launch(render_, pixel_count, kWorkGroup);
     Counters c{};

@@ -89,6 +89,8 @@ private:
     float scene_diagonal_ = 1;
     Buffer nodes_, tris_, tri_material_, materials_, normals_, lights_, alias_, env_pixels_, env_cdf_;
     Buffer params_, accum_, counters_, linear_, srgb_;
+    Buffer attrs_, tex_desc_, texels_;  // surface attributes and textures (render/surface_buffers.hpp)
+    std::uint32_t attr_stride_ = 0, surface_flags_ = 0;
     Program program_;
     Kernel render_, clear_, resolve_;
     RenderStats stats_;

@@ -55,7 +55,7 @@ void add_gltf(Scene& scene, SceneBuilder& builder, const GltfModel& model, const
     }
 }
 
-Camera framing_camera(const Scene& s) {
+Camera framing_camera(const Scene& s, float side) {
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     for (const auto& v : s.vertices) {
         lo = glm::min(lo, v);
@@ -68,7 +68,7 @@ Camera framing_camera(const Scene& s) {
     c.width = 640;
     c.height = 480;
     c.target = centre;
-    c.eye = centre + glm::normalize(glm::vec3(0, 0.25f, -1)) * (radius / std::sin(glm::radians(18.0f)));
+    c.eye = centre + glm::normalize(glm::vec3(0, 0.25f, side)) * (radius / std::sin(glm::radians(18.0f)));
     return c;
 }
 
@@ -83,7 +83,7 @@ Scene gltf_scene(const std::string& file, const LoadOptions& options) {
     builder.finish();
     if (s.triangle_count() == 0) throw Error(file + ": every triangle is degenerate (an empty scene)");
     if (!s.has_emitter()) s.environment.color = glm::vec3(1);
-    s.camera = model.camera ? *model.camera : framing_camera(s);
+    s.camera = model.camera ? *model.camera : framing_camera(s, 1.0f);  // a glTF asset's front faces +z
     return s;
 }
 

@@ -25,7 +25,9 @@ struct VertexAttributes {
 
 class SceneBuilder {
 public:
-    SceneBuilder(Scene& scene, std::size_t max_triangles) : scene_(scene), max_triangles_(max_triangles) {}
+    SceneBuilder(Scene& scene, std::size_t max_triangles)
+        : scene_(scene), max_triangles_(max_triangles), with_uvs_(!scene.uvs.empty()),
+          with_tangents_(!scene.tangents.empty()), with_colors_(!scene.colors.empty()) {}
 
     // Fails, naming `label`, when `triangles` more would exceed the budget;
     // callers ask before they generate a big shape.
@@ -47,7 +49,7 @@ private:
     Scene& scene_;
     std::size_t max_triangles_;
     bool with_normals_ = false;
-    bool with_uvs_ = false, with_tangents_ = false, with_colors_ = false;
+    bool with_uvs_, with_tangents_, with_colors_;
     std::size_t dropped_total_ = 0;
     std::vector<std::pair<std::string, std::size_t>> dropped_;  // per label, in order
 };

@@ -14,6 +14,7 @@
 #include "scene/gltf_scene.hpp"
 #include "scene/json_fields.hpp"
 #include "scene/obj_mesh.hpp"
+#include "scene/obj_textures.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/shapes.hpp"
 #include "util/error.hpp"
@@ -150,6 +151,15 @@ Bumps read_bumps(const Value& v, bool with_function) {
     if (auto f = o.get("frequency")) b.frequency = f->real(Range{0, 10000});
     o.finish();
     return b;
+}
+
+bool textured(const ObjMaterial& om) { return !om.diffuse_texture.empty() || !om.alpha_texture.empty(); }
+
+std::vector<bool> used_materials(const ObjMesh& mesh) {
+    std::vector<bool> used(mesh.materials.size(), false);
+    for (int mi : mesh.triangle_material)
+        if (mi >= 0) used[std::size_t(mi)] = true;
+    return used;
 }
 
 std::size_t icosphere_triangles(int level) { return std::size_t(20) << (2 * level); }
@@ -337,11 +347,18 @@ private:
         const bool has_all = material.has_value();
         const std::uint32_t all = has_all ? scene_material(*material) : 0;
         std::vector<std::uint32_t> index(mesh.materials.size());
+        const std::vector<bool> used = used_materials(mesh);
         for (std::size_t i = 0; i < mesh.materials.size(); ++i) {
             const ObjMaterial& om = mesh.materials[i];
+            if (!used[i] && textured(om)) continue;  // its images are not loaded for nothing
             if (auto it = overrides.find(om.name); it != overrides.end()) index[i] = it->second;
             else if (has_all) index[i] = all;
-            else if (om.defined) index[i] = mesh_material(path + ":" + om.name, om.material);
+            else if (om.defined) {
+                const std::string name = path + ":" + om.name;
+                auto it = material_index_.find(name);
+                index[i] = it != material_index_.end() ? it->second
+                                                       : mesh_material(name, obj_material_with_textures(scene_, om, options_));
+            }
             else
                 throw Error(path + ":" + std::to_string(om.usemtl_line) + ": usemtl '" + om.name +
                             "': no .mtl file defines it, and " + label +
@@ -377,7 +394,8 @@ private:
             return;
         }
         static const std::vector<glm::vec3> kNone;
-        builder_.add(mesh.vertices, smooth ? mesh.normals : kNone, place, tri_mat, label);
+        VertexAttributes attr{&mesh.uvs, nullptr, &mesh.colors};
+        builder_.add(mesh.vertices, smooth ? mesh.normals : kNone, place, tri_mat, label, attr);
     }
 
     // A glTF model as a mesh: its materials unless the object overrides them
@@ -512,12 +530,14 @@ Scene obj_scene(const std::string& file, const LoadOptions& options) {
     s.warnings = mesh.warnings;
     if (mesh.triangle_count() == 0) throw Error(file + ": the mesh has no faces (an empty scene)");
     std::vector<std::uint32_t> index(mesh.materials.size());
+    const std::vector<bool> used = used_materials(mesh);
     for (std::size_t i = 0; i < mesh.materials.size(); ++i) {
         const ObjMaterial& om = mesh.materials[i];
+        if (!used[i] && textured(om)) continue;
         if (!om.defined)
             throw Error(file + ":" + std::to_string(om.usemtl_line) + ": usemtl '" + om.name +
                         "': no .mtl file defines it");
-        index[i] = s.add_material(om.name, om.material);
+        index[i] = s.add_material(om.name, obj_material_with_textures(s, om, options));
     }
     std::vector<std::uint32_t> tri_mat(mesh.triangle_count());
     std::optional<std::uint32_t> grey;
@@ -531,7 +551,8 @@ Scene obj_scene(const std::string& file, const LoadOptions& options) {
         }
     }
     SceneBuilder builder(s, options.max_triangles);
-    builder.add(mesh.vertices, mesh.normals, glm::mat4(1), tri_mat, file);
+    VertexAttributes attr{&mesh.uvs, nullptr, &mesh.colors};
+    builder.add(mesh.vertices, mesh.normals, glm::mat4(1), tri_mat, file, attr);
     builder.finish();
     if (s.triangle_count() == 0) throw Error(file + ": every triangle is degenerate (an empty scene)");
 
