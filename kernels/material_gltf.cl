@@ -19,6 +19,11 @@
  * the pdf is the mixture's, which makes the estimator one-sample MIS over
  * the two lobes. Frames: local, shading normal +z, wo.z > 0 and wi.z > 0. */
 
+#ifndef CLP_MATERIAL_GLTF_CL
+#define CLP_MATERIAL_GLTF_CL
+
+#include "materials.cl"
+
 #ifdef CLP_HAS_MAT_GLTF
 
 inline float gltf_alpha(CLP_MAT_SPACE const Material* m) { return fmax(m->roughness * m->roughness, CLP_SMOOTH_ALPHA); }
@@ -76,5 +81,7 @@ int gltf_sample(CLP_MAT_SPACE const Material* m, float3 wo, float u1, float u2, 
     }
     return wi->z > 0.0f;
 }
+
+#endif
 
 #endif

@@ -6,10 +6,13 @@
  * Directions point away from the surface. BSDFs work in a local frame whose z
  * axis is the shading normal; `ng` is the geometric normal of the triangle's
  * winding (its front side). */
+#ifndef CLP_MATERIALS_CL
+#define CLP_MATERIALS_CL
 
-#ifndef CLP_MAT_SPACE /* programs without textures.cl: materials are read from the global table */
-#define CLP_MAT_SPACE global
-#endif
+#include "common.h"
+#include "sampling.cl"
+/* textures.cl defines CLP_MAT_SPACE: where the material functions read materials from. */
+#include "textures.cl"
 /* A material's float[3] as float3, from whichever address space it is in. */
 #define CLP_M3(p) ((float3)((p)[0], (p)[1], (p)[2]))
 
@@ -369,3 +372,8 @@ inline int material_sample(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns
 
 /* What the albedo debug view shows. */
 inline float3 material_albedo(CLP_MAT_SPACE const Material* m) { return CLP_M3(m->albedo); }
+
+/* The glTF material's definitions need the GGX functions above. */
+#include "material_gltf.cl"
+
+#endif

@@ -4,6 +4,12 @@
  * (glTF's channel layout); emission x emission texture (sRGB); and the
  * shading normal bent by a tangent-space normal map. */
 
+#ifndef CLP_SURFACE_PARAMS_CL
+#define CLP_SURFACE_PARAMS_CL
+
+#include "textures.cl"
+#include "materials.cl"
+
 #ifdef CLP_SURFACE_PARAMS
 
 #ifdef CLP_HAS_TEXTURES
@@ -80,5 +86,7 @@ inline void surface_params(const SurfaceData* sd, global const Material* gm, glo
     out->albedo[1] = base.y;
     out->albedo[2] = base.z;
 }
+
+#endif
 
 #endif

@@ -14,6 +14,12 @@
  * material is a private copy with them applied (CLP_SURFACE_PARAMS), and the
  * material functions take private pointers; otherwise they read the global
  * material table directly, as before. */
+#ifndef CLP_TEXTURES_CL
+#define CLP_TEXTURES_CL
+
+#include "common.h"
+#include "rng.cl"
+#include "intersect.cl"
 
 #if defined(CLP_HAS_TEXTURES) || defined(CLP_HAS_VERTEX_COLORS)
 #define CLP_SURFACE_PARAMS 1
@@ -156,4 +162,6 @@ inline int alpha_keeps_hit(const AlphaScene* as, uint prim, float b1, float b2, 
 #else
 #define CLP_ALPHA_PARAM
 #define CLP_ALPHA_ARG
+#endif
+
 #endif

@@ -8,17 +8,12 @@
  * (Aila & Laine 2009), so each step tests two boxes from one 64-byte fetch.
  * With CLP_HAS_ALPHA every function takes the alpha scene as a last
  * argument (CLP_ALPHA_PARAM, textures.cl) and skips cut-out hits. */
+#ifndef CLP_TRAVERSE_CL
+#define CLP_TRAVERSE_CL
 
-#ifndef CLP_ALPHA_PARAM /* programs without textures.cl (ray batches) */
-#define CLP_ALPHA_PARAM
-#define CLP_ALPHA_ARG
-#endif
-
-typedef struct {
-    float t;
-    float b1, b2; /* barycentric weights of v1 and v2 */
-    int tri;      /* index into the leaf-ordered triangles, -1 for a miss */
-} Hit;
+#include "common.h"
+#include "intersect.cl"
+#include "textures.cl"
 
 inline int intersect_leaf(const RayPre* r, global const TriVerts* tris, uint first, uint count, Hit* hit CLP_ALPHA_PARAM) {
     int found = 0;
@@ -117,3 +112,5 @@ inline Hit traverse_bvh(global const BvhNode* nodes, global const TriVerts* tris
     return traverse_tree(nodes, tris, r, tmax, any_hit, visits CLP_ALPHA_ARG);
 #endif
 }
+
+#endif

@@ -19,14 +19,6 @@ std::size_t texel_words(const Texture& t) {
 }
 }  // namespace
 
-std::size_t surface_attribute_bytes(const Scene& s) { return s.triangle_count() * stride_of(s, nullptr) * sizeof(float); }
-
-std::size_t texture_bytes(const Scene& s) {
-    std::size_t words = 0;
-    for (const auto& t : s.textures) words += texel_words(t);
-    return words * sizeof(std::uint32_t) + s.textures.size() * sizeof(TextureDesc);
-}
-
 SurfaceBuffers pack_surface_buffers(const Scene& s) {
     SurfaceBuffers b;
     b.attr_stride = stride_of(s, &b.scene_flags);

@@ -19,11 +19,6 @@ struct SurfaceBuffers {
     std::vector<std::uint32_t> texels;
 };
 
-// Sizes only: what pack_surface_buffers will allocate, for the device-memory
-// check before anything large is made.
-std::size_t surface_attribute_bytes(const Scene& scene);
-std::size_t texture_bytes(const Scene& scene);
-
 // Throws clpath::Error when the textures exceed what 32-bit texel offsets address.
 SurfaceBuffers pack_surface_buffers(const Scene& scene);
 

@@ -135,3 +135,10 @@ clpath_cli_test(render_flat_accel ARGS render --spp 1 --width 40 --height 32 --a
 clpath_cli_test(render_bad_accel FAIL ARGS render --spp 1 --accel kd OUTPUT "accel")
 clpath_scene_cli_test(render_closed_room ARGS render room:2000 --spp 1 --width 40 --height 32 -o ${CLI_OUT}/room.pfm
                       OUTPUT "triangles=1994 .*loaded 'room-1994' from room:2000")
+
+# glTF: a model renders from the command line; a broken one names its glTF path and writes nothing.
+clpath_scene_cli_test(render_gltf ARGS render ${CMAKE_SOURCE_DIR}/scenes/suzanne/Suzanne.gltf --spp 1 --width 40
+                      --height 30 -o ${CLI_OUT}/suzanne.pfm OUTPUT "summary: device=.* triangles=3936 ")
+clpath_scene_cli_test(gltf_bad_index FAIL ARGS render ${SCENE_DATA}/bad-index.gltf -o ${CLI_OUT}/bad-gltf.pfm
+                      OUTPUT "bad-index.gltf: meshes\\[0\\]\\.primitives\\[0\\]\\.indices: index 9 at position 5 is out of range"
+                      FORBID ${CLI_OUT}/bad-gltf.pfm)
