@@ -1,4 +1,6 @@
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -10,6 +12,9 @@
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
 #include "image/image.hpp"
+#include "cl/device_set.hpp"
+#include "cli/chunked_render.hpp"
+#include "cli/mpi_launch.hpp"
 #include "render/renderer.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/scene_loader.hpp"
@@ -36,7 +41,23 @@ struct RenderOptions {
     int leaf_size = 4, bins = 16;
     bool quiet = false;
     std::string accel = "bvh";
+    std::uint32_t chunk_samples = 0;
+    double checkpoint_seconds = 0;
+    std::string checkpoint_file, resume;
+    bool no_partial = false;
 };
+
+// The kernel's sRGB encoding (kernels/film.cl), for images resolved on the host.
+std::vector<std::uint8_t> srgb8_from_linear(const Image& img) {
+    auto enc = [](float x) {
+        x = std::clamp(x, 0.0f, 1.0f);
+        return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
+    };
+    std::vector<std::uint8_t> out(img.rgb.size() / 3 * 4, 255);
+    for (std::size_t i = 0; i < img.rgb.size() / 3; ++i)
+        for (int c = 0; c < 3; ++c) out[i * 4 + c] = std::uint8_t(enc(img.rgb[i * 3 + c]) * 255.0f + 0.5f);
+    return out;
+}
 
 int run_render(const RenderOptions& o) {
     // Everything that can be checked before rendering is checked first.
@@ -77,57 +98,71 @@ int run_render(const RenderOptions& o) {
         std::fprintf(stderr, "clpath: warning: scene '%s' has no emitter; the image will be black\n",
                      scene.name.c_str());
 
-    const DeviceInfo device = select_device(o.device);
-    Context ctx(device);
-    if (!o.quiet)
+    const std::vector<DeviceInfo> devices = select_devices(o.device);
+    MpiJob* mpi = mpi_job();
+    if (!o.quiet) {
+        std::string names;
+        for (const auto& d : devices) names += (names.empty() ? "" : ", ") + d.describe();
         std::fprintf(stderr, "clpath: rendering '%s' (%zu triangles) at %dx%d with '%s' on %s\n", scene.name.c_str(),
                      scene.triangle_count(), scene.camera.width, scene.camera.height,
-                     integrator_name(settings.integrator), device.describe().c_str());
-    // A scene too large for the device is found here, before any allocation;
-    // the message then names the scene it is about.
-    std::unique_ptr<Renderer> renderer_ptr;
+                     integrator_name(settings.integrator), names.c_str());
+    }
+    ChunkedRenderOptions co;
+    co.spp = spp;
+    co.time_limit = o.time_limit;
+    co.chunk_samples = o.chunk_samples;
+    co.checkpoint_seconds = o.checkpoint_seconds;
+    co.checkpoint_path = o.checkpoint_file.empty() ? outputs.front() + ".checkpoint" : o.checkpoint_file;
+    co.resume_path = o.resume;
+    co.progress = !o.quiet;
+    ChunkedRenderResult result;
     try {
-        renderer_ptr = std::make_unique<Renderer>(ctx, scene, settings);
+        result = render_in_chunks(scene, settings, devices, co, mpi);
     } catch (const Error& e) {
         throw Error(o.scene + ": " + e.what());
     }
-    Renderer& renderer = *renderer_ptr;
-    if (!o.quiet)
-        std::fprintf(stderr, "clpath: %s; kernels %s in %.2f s\n", describe(renderer.bvh_stats()).c_str(),
-                     renderer.compiled_from_cache() ? "loaded from cache" : "compiled", renderer.compile_seconds());
-
-    Progress progress(spp, o.time_limit, !o.quiet);
-    const auto t0 = std::chrono::steady_clock::now();
-    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-    for (;;) {
-        const std::uint64_t done = renderer.stats().samples_per_pixel;
-        if (spp && done >= spp) break;
-        if (o.time_limit > 0 && elapsed() >= o.time_limit) break;
-        // One sample per step when a time limit is set, so the limit is kept closely;
-        // otherwise steps of up to 1/20 of the total, for a smooth progress bar.
-        std::uint64_t step = o.time_limit > 0 ? 1 : std::max<std::uint64_t>(1, spp / 20);
-        if (spp) step = std::min(step, spp - done);
-        if (done + step > kMaxSamplesPerPixel) break;
-        renderer.add_samples(std::uint32_t(step));
-        progress.update(renderer.stats().samples_per_pixel, elapsed());
+    if (!result.writes_output) return 0;
+    const std::uint64_t done_spp = result.film.samples_per_pixel();
+    if (result.interrupted) {
+        std::fprintf(stderr, "clpath: interrupted by signal %d after %llu samples per pixel\n", result.signal,
+                     (unsigned long long)done_spp);
+        if (o.no_partial) {
+            std::fprintf(stderr, "clpath: --no-partial: nothing written\n");
+            return 130;
+        }
     }
-    progress.finish();
-    const double wall = elapsed();
-    RenderedImage image = renderer.resolve();
+    if (done_spp == 0) throw Error("no sample was finished, so there is no image to write");
+    RenderedImage image;
+    image.linear = result.film.mean();
+    image.srgb8 = srgb8_from_linear(image.linear);
     for (const auto& out : outputs) {
         write_image(out, image);
         if (!o.quiet) std::fprintf(stderr, "clpath: wrote %s\n", out.c_str());
     }
+    // A finished render needs its checkpoint no more.
+    if (!result.interrupted && o.checkpoint_seconds > 0) std::filesystem::remove(co.checkpoint_path);
 
-    const RenderStats& st = renderer.stats();
-    const double samples = double(st.samples_per_pixel) * scene.camera.width * scene.camera.height;
+    const double wall = result.wall_seconds;
+    const double samples = double(done_spp) * scene.camera.width * scene.camera.height;
+    std::string device_names;
+    for (const auto& d : devices) device_names += (device_names.empty() ? "" : ", ") + d.name;
     std::printf(
-        "summary: device=\"%s\" integrator=%s triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f spp=%llu "
-        "render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s\n",
-        device.name.c_str(), integrator_name(settings.integrator), renderer.triangle_count(), renderer.bvh_stats().build_ms, renderer.bvh_stats().node_count,
-        renderer.bvh_stats().sah_cost, (unsigned long long)st.samples_per_pixel, wall, samples / wall * 1e-6,
-        double(st.rays) / wall * 1e-6, (unsigned long long)st.rays, (unsigned long long)st.nonfinite,
-        accel_name(settings.accel));
+        "summary: device=\"%s\" devices=%zu integrator=%s triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f "
+        "spp=%llu render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s%s\n",
+        device_names.c_str(), result.shares.size(), integrator_name(settings.integrator), scene.triangle_count(),
+        result.bvh.build_ms, result.bvh.node_count, result.bvh.sah_cost, (unsigned long long)done_spp, wall,
+        samples / wall * 1e-6, double(result.rays) / wall * 1e-6, (unsigned long long)result.rays,
+        (unsigned long long)result.nonfinite, accel_name(settings.accel),
+        result.interrupted ? " interrupted=1" : "");
+    if (result.shares.size() > 1 || mpi)
+        for (const auto& s : result.shares)
+            std::printf("device: \"%s\" chunks=%llu spp=%llu share=%.1f%% msamples_per_s=%.3f\n", s.device.c_str(),
+                        (unsigned long long)s.chunks, (unsigned long long)s.samples_per_pixel,
+                        done_spp ? 100.0 * double(s.samples_per_pixel) / double(done_spp) : 0.0,
+                        s.busy_seconds > 0 ? double(s.samples_per_pixel) * scene.camera.width * scene.camera.height /
+                                                 s.busy_seconds * 1e-6
+                                           : 0.0);
+    const RenderStats st{done_spp, result.rays, result.nonfinite, 0, wall};
     if (st.nonfinite)
         std::fprintf(stderr, "clpath: warning: %llu samples were NaN or infinite and were dropped\n",
                      (unsigned long long)st.nonfinite);
@@ -171,7 +206,17 @@ Command add_render_command(CLI::App& app) {
     cmd->add_option("--out,-o", o->outputs,
                     "Output image, .png (8-bit sRGB), .exr or .pfm (linear float); repeatable "
                     "(default: out/SCENE.png and out/SCENE.exr)");
-    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
+    cmd->add_option("--device,-d", o->device,
+                    "OpenCL device(s): an index or name substring (see 'clpath devices'), a comma-separated list "
+                    "of them, or 'all'");
+    cmd->add_option("--chunk", o->chunk_samples,
+                    "Samples per chunk handed to a device (default: spp/64, 1 to 64; 4 with --time alone)")
+        ->check(CLI::Range(1u, 1u << 20));
+    cmd->add_option("--checkpoint", o->checkpoint_seconds, "Save the running sums every this many seconds")
+        ->check(CLI::Range(0.001, 1e9));
+    cmd->add_option("--checkpoint-file", o->checkpoint_file, "Where checkpoints go (default: the first output + .checkpoint)");
+    cmd->add_option("--resume", o->resume, "Continue the render saved in this checkpoint (same scene, --spp, --chunk)");
+    cmd->add_flag("--no-partial", o->no_partial, "On Ctrl-C or SIGTERM, write nothing (default: the samples so far)");
     cmd->add_option("--leaf-size", o->leaf_size, "BVH: most triangles per leaf")
         ->check(CLI::Range(1, 64))
         ->capture_default_str();

@@ -3,24 +3,21 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
+#include <string>
 #include <random>
 
 #include "bvh/bvh.hpp"
 #include "scene/shapes.hpp"
+#include "support/random_geometry.hpp"
+#include "util/error.hpp"
 
 using namespace clpath;
 
 namespace {
 
 std::vector<glm::vec3> soup(std::size_t n, std::uint32_t seed, float size = 0.1f) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(-1, 1);
-    std::vector<glm::vec3> v;
-    for (std::size_t i = 0; i < n; ++i) {
-        const glm::vec3 c(u(rng), u(rng), u(rng));
-        for (int k = 0; k < 3; ++k) v.push_back(c + size * glm::vec3(u(rng), u(rng), u(rng)));
-    }
-    return v;
+    return test::random_soup(n, seed, size, size);
 }
 
 Bvh checked(const std::vector<glm::vec3>& v, BvhBuildOptions o = {}) {
@@ -46,13 +43,25 @@ TEST(BvhBuild, OneAndTwoTriangles) {
 }
 
 TEST(BvhBuild, AllCentroidsEqual) {
-    // 100k triangles around one centre: the SAH finds no split; median splits must.
+    // 100k triangles of random shape and size around one centre: the SAH
+    // finds no split; median splits must. On every axis a triangle's
+    // coordinates are s, -s and 0, so its vertex mean and its box centre
+    // are both exactly the origin, whichever the builder bins by; the
+    // vertices (x, y, 0), (-x, 0, z), (0, -y, -z) span a triangle of area
+    // 1.5 |(yz, xz, xy)| > 0: not a degenerate case in disguise.
     std::vector<glm::vec3> v;
     std::mt19937 rng(4);
     std::uniform_real_distribution<float> u(0.1f, 1);
     for (int i = 0; i < 100000; ++i) {
         const glm::vec3 a(u(rng), u(rng), u(rng));
-        v.insert(v.end(), {a, -a, glm::vec3(a.y, -a.x, 0) - glm::vec3(a.y, -a.x, 0)});
+        v.insert(v.end(), {{a.x, a.y, 0}, {-a.x, 0, a.z}, {0, -a.y, -a.z}});
+    }
+    for (std::size_t t = 0; t < v.size(); t += 3) {
+        const glm::vec3 lo = glm::min(v[t], glm::min(v[t + 1], v[t + 2]));
+        const glm::vec3 hi = glm::max(v[t], glm::max(v[t + 1], v[t + 2]));
+        ASSERT_EQ(lo + hi, glm::vec3(0)) << "triangle " << t / 3 << ": its box is not centred on the origin";
+        ASSERT_EQ(v[t] + v[t + 1] + v[t + 2], glm::vec3(0)) << "triangle " << t / 3 << ": its mean is not the origin";
+        ASSERT_GT(glm::length(glm::cross(v[t + 1] - v[t], v[t + 2] - v[t])), 0.0f) << "triangle " << t / 3;
     }
     const Bvh b = checked(v);
     EXPECT_LE(b.stats.leaf_count * 4, v.size() / 3 * 2) << "leaves stay small";
@@ -74,13 +83,20 @@ TEST(BvhBuild, IdenticalAndDegenerateTriangles) {
 
 TEST(BvhBuild, DeterministicAcrossThreadCounts) {
     const auto v = soup(300000, 5, 0.02f);
-    BvhBuildOptions one, four;
+    // Large enough for the top levels' parallel binning and partitions; 3
+    // threads cut the records into uneven chunks.
+    BvhBuildOptions one;
     one.threads = 1;
-    four.threads = 4;
-    const Bvh a = checked(v, one), b = checked(v, four);
-    ASSERT_EQ(a.nodes.size(), b.nodes.size());
-    EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)), 0);
-    EXPECT_EQ(std::memcmp(a.triangles.data(), b.triangles.data(), a.triangles.size() * sizeof(TriVerts)), 0);
+    const Bvh a = checked(v, one);
+    for (int threads : {2, 3, 4}) {
+        BvhBuildOptions o;
+        o.threads = threads;
+        const Bvh b = checked(v, o);
+        ASSERT_EQ(a.nodes.size(), b.nodes.size()) << threads << " threads";
+        EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)), 0) << threads;
+        EXPECT_EQ(std::memcmp(a.triangles.data(), b.triangles.data(), a.triangles.size() * sizeof(TriVerts)), 0)
+            << threads << " threads";
+    }
 }
 
 TEST(BvhBuild, SahBeatsMedianSplits) {
@@ -92,4 +108,35 @@ TEST(BvhBuild, SahBeatsMedianSplits) {
     EXPECT_LT(checked(v, fine).stats.sah_cost, checked(v, coarse).stats.sah_cost);
 }
 
-TEST(BvhBuild, EmptyInputIsAnError) { EXPECT_THROW(build_bvh({}), std::invalid_argument); }
+// Bad input gets the project's error type, whose message names what is wrong.
+void expect_error(const std::vector<glm::vec3>& v, const BvhBuildOptions& o, const std::string& words) {
+    try {
+        build_bvh(v, o);
+        ADD_FAILURE() << "no error; expected one naming '" << words << "'";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+}
+
+TEST(BvhBuild, EmptyInputIsAnError) { expect_error({}, {}, "no triangles"); }
+
+TEST(BvhBuild, BadInputIsAnError) {
+    auto v = soup(100, 7);
+    expect_error({v[0], v[1]}, {}, "2 vertices is not a whole number of triangles");
+    BvhBuildOptions o;
+    o.bins = 1;
+    expect_error(v, o, "bins must be in [2, 256], got 1");
+    o = {};
+    o.max_leaf_size = 65;
+    expect_error(v, o, "leaf size must be in [1, 64], got 65");
+    o = {};
+    o.traversal_cost = -1;
+    expect_error(v, o, "traversal cost");
+    v[3 * 42 + 1].y = std::numeric_limits<float>::quiet_NaN();
+    expect_error(v, {}, "triangle 42 has a non-finite vertex");
+    v[3 * 42 + 1].y = 0;
+    v[3 * 97 + 2].z = -std::numeric_limits<float>::infinity();
+    expect_error(v, {}, "triangle 97 has a non-finite vertex");
+    v[3 * 97 + 2].z = 3e38f;  // huge but finite: no error
+    EXPECT_NO_THROW(checked(v));
+}

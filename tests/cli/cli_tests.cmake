@@ -104,7 +104,7 @@ function(clpath_bench_quick_test name csv header zero_column min_rows)
                      -P ${CMAKE_CURRENT_SOURCE_DIR}/bench/bench_quick.cmake)
     set_tests_properties(cli.bench.${name} PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 300)
 endfunction()
-set(RAYS_HEADER "^device,scene,triangles,accel,batch,width,height,workgroup,rays,hits,launches,mean_ms,best_ms,mrays_per_s,checked,identical_percent,ties,near_origin,mismatched,max_dt$")
+set(RAYS_HEADER "^device,scene,triangles,accel,batch,width,height,workgroup,rays,hits,launches,mean_ms,best_ms,mrays_per_s,checked,identical_percent,ties,near_origin,mismatched,max_dt,embree_mean_ms,embree_mrays_per_s,clpath_over_embree,embree_mismatched$")
 set(SCALING_HEADER "^device,requested,triangles,accel,generate_ms,build_ms,build_mtris_per_s,sah_cost,nodes,bytes_per_triangle,primary_mrays_per_s,shadow_mrays_per_s,diffuse_mrays_per_s,path_msamples_per_s,checked_rays,mismatched,seconds,skipped$")
 # Every ray of the quick batches is checked on the CPU: no mismatch is allowed.
 clpath_bench_quick_test(rays_quick_bvh ${CLI_OUT}/rays-bvh.csv "${RAYS_HEADER}" mismatched 3 bench rays cornell --quick)
@@ -135,6 +135,13 @@ clpath_cli_test(render_flat_accel ARGS render --spp 1 --width 40 --height 32 --a
 clpath_cli_test(render_bad_accel FAIL ARGS render --spp 1 --accel kd OUTPUT "accel")
 clpath_scene_cli_test(render_closed_room ARGS render room:2000 --spp 1 --width 40 --height 32 -o ${CLI_OUT}/room.pfm
                       OUTPUT "triangles=1994 .*loaded 'room-1994' from room:2000")
+
+# --- export --format mitsuba: a Mitsuba 3 scene dictionary and one mesh per material ---
+clpath_cli_test(export.mitsuba ARGS export ${CMAKE_SOURCE_DIR}/scenes/cornell-thesis.json
+                ${CLI_OUT}/thesis-mitsuba.json --format mitsuba --width 32 --height 26
+                OUTPUT "wrote .*thesis-mitsuba.json and 7 meshes: Mitsuba 3, 196 triangles, 32x26, max depth 16")
+clpath_cli_test(export.unknown_format FAIL ARGS export ${CMAKE_SOURCE_DIR}/scenes/cornell-thesis.json
+                ${CLI_OUT}/thesis-pbrt.json --format pbrt OUTPUT "format" FORBID ${CLI_OUT}/thesis-pbrt.json)
 
 # glTF: a model renders from the command line; a broken one names its glTF path and writes nothing.
 clpath_scene_cli_test(render_gltf ARGS render ${CMAKE_SOURCE_DIR}/scenes/suzanne/Suzanne.gltf --spp 1 --width 40
