@@ -12,6 +12,7 @@
 #include "camera.cl"
 #include "traverse.cl"
 #include "materials.cl"
+#include "surface_params.cl"
 #include "lights.cl"
 #include "film.cl"
 
@@ -32,7 +33,17 @@ typedef struct {
     global const AliasEntry* alias;
     EnvMap env;
     constant const FrameParams* fp;
+    SurfaceData sd; /* textures and vertex attributes (textures.cl) */
+#ifdef CLP_HAS_ALPHA
+    AlphaScene alpha;
+#endif
 } SceneData;
+
+#ifdef CLP_HAS_ALPHA
+#define CLP_SCENE_ALPHA , &sc->alpha
+#else
+#define CLP_SCENE_ALPHA
+#endif
 
 inline int tile_to_pixel(uint i, uint width, uint height, uint* px, uint* py) {
     uint tiles_x = (width + CLP_TILE - 1) / CLP_TILE;
@@ -67,7 +78,16 @@ typedef struct {
     int front;     /* the ray arrived on the front side */
     global const TriVerts* tv;
     global const Material* m;
+#ifdef CLP_SURFACE_PARAMS
+    Material mat; /* m with this point's textures and vertex colour applied (surface_params.cl) */
+#endif
 } Surface;
+
+#ifdef CLP_SURFACE_PARAMS
+#define surface_material(s) (&(s)->mat)
+#else
+#define surface_material(s) ((s)->m)
+#endif
 
 inline Surface surface_at(const SceneData* sc, const Hit* h, float3 d) {
     Surface s;
@@ -86,6 +106,9 @@ inline Surface surface_at(const SceneData* sc, const Hit* h, float3 d) {
     if (len > 0.0f && isfinite(len)) s.ns = ns / len;
     }
 #endif
+#ifdef CLP_SURFACE_PARAMS
+    surface_params(&sc->sd, s.m, s.tv, h->b1, h->b2, &s.ns, &s.mat);
+#endif
     return s;
 }
 
@@ -93,13 +116,13 @@ inline Surface surface_at(const SceneData* sc, const Hit* h, float3 d) {
 inline int occluded(const SceneData* sc, float3 o, float3 d, float tmax, uint* rays) {
     RayPre rp = ray_prepare(o, d);
     ++*rays;
-    return traverse_bvh(sc->nodes, sc->tris, &rp, tmax, 1, 0).tri >= 0;
+    return traverse_bvh(sc->nodes, sc->tris, &rp, tmax, 1, 0 CLP_SCENE_ALPHA).tri >= 0;
 }
 
 inline Hit trace_closest(const SceneData* sc, Ray ray, uint* rays, uint* visits) {
     RayPre rp = ray_prepare(ray.o, ray.d);
     ++*rays;
-    return traverse_bvh(sc->nodes, sc->tris, &rp, INFINITY, 0, visits);
+    return traverse_bvh(sc->nodes, sc->tris, &rp, INFINITY, 0, visits CLP_SCENE_ALPHA);
 }
 
 /* ---- path tracing ------------------------------------------------------- */
@@ -114,7 +137,7 @@ inline float3 sample_direct(const SceneData* sc, const Surface* s, float3 wo, Rn
     float u0 = rng_next(rng), u1 = rng_next(rng), u2 = rng_next(rng);
     if (!sample_light(sc->lights, sc->alias, sc->fp, &sc->env, s->p, u0, u1, u2, &ls)) return (float3)(0.0f);
     float bsdf_pdf;
-    float3 f = material_eval(s->m, s->ng, s->ns, wo, ls.wi, &bsdf_pdf);
+    float3 f = material_eval(surface_material(s), s->ng, s->ns, wo, ls.wi, &bsdf_pdf);
     if (!(max3(f) > 0.0f) || !(max3(ls.L) > 0.0f)) return (float3)(0.0f);
     float3 o = offset_ray_origin(s->p, s->err, s->ng, ls.wi);
     if (ls.infinite ? occluded(sc, o, ls.wi, INFINITY, rays) : occluded(sc, o, ls.to - o, 1.0f, rays))
@@ -145,7 +168,7 @@ inline float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
         }
         Surface s = surface_at(sc, &h, ray.d);
 #ifdef CLP_HAS_EMISSION
-        float3 Le = material_emission(s.m, s.front);
+        float3 Le = material_emission(surface_material(&s), s.front);
         if (max3(Le) > 0.0f) {
             float w = 1.0f;
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH && defined(CLP_HAS_TRIANGLE_LIGHTS)
@@ -155,15 +178,15 @@ inline float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
             L += beta * w * Le;
         }
 #endif
-        if (depth >= CLP_MAX_DEPTH || !material_scatters(s.m)) break;
+        if (depth >= CLP_MAX_DEPTH || !material_scatters(surface_material(&s))) break;
         if (!russian_roulette(fp, depth, &beta, rng)) break;
         float3 wo = -ray.d;
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH
-        if (fp->light_count > 0 && !material_is_delta(s.m)) L += beta * sample_direct(sc, &s, wo, rng, rays);
+        if (fp->light_count > 0 && !material_is_delta(surface_material(&s))) L += beta * sample_direct(sc, &s, wo, rng, rays);
 #endif
         BsdfSample bs;
         float u1 = rng_next(rng), u2 = rng_next(rng), u3 = rng_next(rng);
-        if (!material_sample(s.m, s.ng, s.ns, wo, u1, u2, u3, &bs)) break;
+        if (!material_sample(surface_material(&s), s.ng, s.ns, wo, u1, u2, u3, &bs)) break;
         beta *= bs.weight;
         prev_pdf = bs.pdf;
         prev_delta = bs.delta;
@@ -218,7 +241,7 @@ inline float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
 #elif CLP_INTEGRATOR == CLP_INTEGRATOR_DEPTH
     return (float3)(h.t / sc->fp->depth_scale);
 #else
-    return material_albedo(s.m);
+    return material_albedo(surface_material(&s));
 #endif
 #endif
 }
@@ -229,6 +252,7 @@ inline float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
 kernel void render_paths(global const AccelNode* nodes, global const TriVerts* tris, global const uint* tri_material,
                          global const Material* materials, global const float* normals, global const Light* lights,
                          global const AliasEntry* alias, global const float4* env_pixels, global const float* env_cdf,
+                         global const float* attrs, global const TextureDesc* tex_desc, global const uint* texels,
                          constant const FrameParams* fp, global AccumPixel* accum, global Counters* counters) {
     local uint group_rays, group_nonfinite;
     if (get_local_id(0) == 0) group_rays = group_nonfinite = 0;
@@ -245,6 +269,16 @@ kernel void render_paths(global const AccelNode* nodes, global const TriVerts* t
     sc.env.pixels = env_pixels;
     sc.env.cdf = env_cdf;
     sc.fp = fp;
+    sc.sd.desc = tex_desc;
+    sc.sd.texels = texels;
+    sc.sd.attrs = attrs;
+    sc.sd.attr_stride = fp->attr_stride;
+    sc.sd.flags = fp->scene_flags;
+#ifdef CLP_HAS_ALPHA
+    sc.alpha.sd = sc.sd;
+    sc.alpha.tri_material = tri_material;
+    sc.alpha.materials = materials;
+#endif
 
     uint rays = 0, nonfinite = 0, px, py;
     uint gid = get_global_id(0);

@@ -11,17 +11,21 @@
 
 #include "common.h"
 #include "sampling.cl"
+/* textures.cl defines CLP_MAT_SPACE: where the material functions read materials from. */
+#include "textures.cl"
+/* A material's float[3] as float3, from whichever address space it is in. */
+#define CLP_M3(p) ((float3)((p)[0], (p)[1], (p)[2]))
 
 /* ---- emission ---------------------------------------------------------- */
 
 /* Radiance emitted towards a ray that hit the surface from the front
  * (front = the side the triangle's winding faces) or the back. */
-inline float3 material_emission(global const Material* m, int front) {
+inline float3 material_emission(CLP_MAT_SPACE const Material* m, int front) {
     if (!front && !(m->flags & CLP_MATF_TWO_SIDED_EMISSION)) return (float3)(0.0f);
-    return load3g(m->emission);
+    return CLP_M3(m->emission);
 }
 
-inline int material_scatters(global const Material* m) {
+inline int material_scatters(CLP_MAT_SPACE const Material* m) {
     return m->kind != CLP_MAT_DIFFUSE || m->albedo[0] > 0.0f || m->albedo[1] > 0.0f || m->albedo[2] > 0.0f;
 }
 
@@ -29,10 +33,10 @@ inline int material_scatters(global const Material* m) {
  * smooth surface: the GGX lobe would be narrower than float can represent. */
 #define CLP_SMOOTH_ALPHA 1e-3f
 
-inline float ggx_alpha(global const Material* m) { return m->roughness * m->roughness; }
+inline float ggx_alpha(CLP_MAT_SPACE const Material* m) { return m->roughness * m->roughness; }
 
 /* Materials whose scattering is a Dirac delta: no light sampling, no MIS. */
-inline int material_is_delta(global const Material* m) {
+inline int material_is_delta(CLP_MAT_SPACE const Material* m) {
     switch (m->kind) {
 #ifdef CLP_HAS_MAT_MIRROR
     case CLP_MAT_MIRROR: return 1;
@@ -182,6 +186,12 @@ inline int rough_dielectric_sample(float3 wo, float alpha, float eta, float u1, 
     return 1;
 }
 
+#ifdef CLP_HAS_MAT_GLTF
+/* The glTF metallic-roughness material, in the local frame (material_gltf.cl). */
+float3 gltf_eval(CLP_MAT_SPACE const Material* m, float3 wo, float3 wi, float* pdf);
+int gltf_sample(CLP_MAT_SPACE const Material* m, float3 wo, float u1, float u2, float u3, float3* wi);
+#endif
+
 /* ---- the BSDF interface ------------------------------------------------- */
 
 typedef struct {
@@ -195,7 +205,7 @@ typedef struct {
  * use the shading normal turned to wo's side of the geometric normal; glass
  * keeps the geometric orientation (front = outside) so entering and leaving
  * follow from the geometry, never from a flag carried along the path. */
-inline Frame scatter_frame(global const Material* m, float3 ng, float3 ns, float3 wo) {
+inline Frame scatter_frame(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns, float3 wo) {
 #ifdef CLP_HAS_MAT_DIELECTRIC
     if (m->kind == CLP_MAT_DIELECTRIC) {
         if (dot(ns, ng) < 0.0f) ns = -ns;
@@ -212,7 +222,7 @@ inline Frame scatter_frame(global const Material* m, float3 ng, float3 ns, float
 /* f(wo, wi) |cos theta_i| and the pdf with which material_sample picks wi.
  * Delta lobes evaluate to 0. A reflection whose wi falls below the geometric
  * surface is 0: that light would have come through the triangle. */
-inline float3 material_eval(global const Material* m, float3 ng, float3 ns, float3 wo_w, float3 wi_w, float* pdf) {
+inline float3 material_eval(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns, float3 wo_w, float3 wi_w, float* pdf) {
     *pdf = 0.0f;
     Frame f = scatter_frame(m, ng, ns, wo_w);
     float3 wo = to_local(&f, wo_w), wi = to_local(&f, wi_w);
@@ -226,7 +236,7 @@ inline float3 material_eval(global const Material* m, float3 ng, float3 ns, floa
         float eta = wo.z > 0.0f ? m->ior : 1.0f / m->ior;
         if (wo.z < 0.0f) { wo.z = -wo.z; wi.z = -wi.z; } /* mirror an inside wo above the surface */
         float fc = rough_dielectric_eval(wo, wi, alpha, eta, pdf);
-        return wi.z < 0.0f ? load3g(m->albedo) * fc : (float3)(fc);
+        return wi.z < 0.0f ? CLP_M3(m->albedo) * fc : (float3)(fc);
     }
 #endif
     if (dot(wi_w, ng) * dot(wo_w, ng) <= 0.0f) return (float3)(0.0f); /* reflection only, below this line */
@@ -235,7 +245,10 @@ inline float3 material_eval(global const Material* m, float3 ng, float3 ns, floa
 #ifdef CLP_HAS_MAT_DIFFUSE
     case CLP_MAT_DIFFUSE:
         *pdf = diffuse_hemisphere_pdf(wi.z);
-        return load3g(m->albedo) * (wi.z * CLP_INV_PI);
+        return CLP_M3(m->albedo) * (wi.z * CLP_INV_PI);
+#endif
+#ifdef CLP_HAS_MAT_GLTF
+    case CLP_MAT_GLTF: return gltf_eval(m, wo, wi, pdf);
 #endif
 #ifdef CLP_HAS_MAT_CONDUCTOR
     case CLP_MAT_CONDUCTOR: {
@@ -243,7 +256,7 @@ inline float3 material_eval(global const Material* m, float3 ng, float3 ns, floa
         if (alpha < CLP_SMOOTH_ALPHA) return (float3)(0.0f);
         float3 h = normalize(wo + wi);
         *pdf = ggx_reflection_pdf(wo, h, alpha);
-        float3 F = schlick_fresnel(load3g(m->albedo), dot(wo, h));
+        float3 F = schlick_fresnel(CLP_M3(m->albedo), dot(wo, h));
         return F * (ggx_d(h, alpha) * ggx_g2(wo, wi, alpha) / (4.0f * wo.z));
     }
 #endif
@@ -252,7 +265,7 @@ inline float3 material_eval(global const Material* m, float3 ng, float3 ns, floa
 }
 
 /* Samples wi for wo with the numbers u1..u3. Returns 0 when the path ends here. */
-inline int material_sample(global const Material* m, float3 ng, float3 ns, float3 wo_w, float u1, float u2, float u3,
+inline int material_sample(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns, float3 wo_w, float u1, float u2, float u3,
                            BsdfSample* s) {
     Frame f = scatter_frame(m, ng, ns, wo_w);
     float3 wo = to_local(&f, wo_w);
@@ -266,10 +279,10 @@ inline int material_sample(global const Material* m, float3 ng, float3 ns, float
         s->pdf = diffuse_hemisphere_pdf(wi.z);
 #ifdef CLP_UNIFORM_HEMISPHERE
         /* f cos / pdf = (albedo / pi) cos theta * 2 pi. */
-        s->weight = load3g(m->albedo) * (2.0f * wi.z);
+        s->weight = CLP_M3(m->albedo) * (2.0f * wi.z);
 #else
         /* Lambert sampled by cos theta / pi: the weight is the albedo exactly. */
-        s->weight = load3g(m->albedo);
+        s->weight = CLP_M3(m->albedo);
 #endif
         break;
     }
@@ -277,7 +290,7 @@ inline int material_sample(global const Material* m, float3 ng, float3 ns, float
 #ifdef CLP_HAS_MAT_MIRROR
     case CLP_MAT_MIRROR:
         s->wi = from_local(&f, (float3)(-wo.x, -wo.y, wo.z));
-        s->weight = load3g(m->albedo);
+        s->weight = CLP_M3(m->albedo);
         s->delta = 1;
         break;
 #endif
@@ -287,7 +300,7 @@ inline int material_sample(global const Material* m, float3 ng, float3 ns, float
         if (wo.z <= 0.0f) return 0;
         if (alpha < CLP_SMOOTH_ALPHA) {
             s->wi = from_local(&f, (float3)(-wo.x, -wo.y, wo.z));
-            s->weight = schlick_fresnel(load3g(m->albedo), wo.z);
+            s->weight = schlick_fresnel(CLP_M3(m->albedo), wo.z);
             s->delta = 1;
             break;
         }
@@ -297,7 +310,19 @@ inline int material_sample(global const Material* m, float3 ng, float3 ns, float
         s->wi = from_local(&f, wi);
         s->pdf = ggx_reflection_pdf(wo, h, alpha);
         /* f cos / pdf = F G2 / G1(wo) for visible-normal sampling. */
-        s->weight = schlick_fresnel(load3g(m->albedo), dot(wo, h)) * (ggx_g2(wo, wi, alpha) / ggx_g1(wo, alpha));
+        s->weight = schlick_fresnel(CLP_M3(m->albedo), dot(wo, h)) * (ggx_g2(wo, wi, alpha) / ggx_g1(wo, alpha));
+        break;
+    }
+#endif
+#ifdef CLP_HAS_MAT_GLTF
+    case CLP_MAT_GLTF: {
+        /* One definition: the sampled direction's value and pdf come from gltf_eval. */
+        float3 wi;
+        if (!gltf_sample(m, wo, u1, u2, u3, &wi)) return 0;
+        float3 val = gltf_eval(m, wo, wi, &s->pdf);
+        if (!(s->pdf > 0.0f)) return 0;
+        s->wi = from_local(&f, wi);
+        s->weight = val / s->pdf;
         break;
     }
 #endif
@@ -313,7 +338,7 @@ inline int material_sample(global const Material* m, float3 ng, float3 ns, float
             if (!rough_dielectric_sample(wm, alpha, eta, u1, u2, u3, &wi, &s->pdf, &weight)) return 0;
             if (!outside) wi.z = -wi.z;
             s->wi = from_local(&f, wi);
-            s->weight = wi.z * wo.z < 0.0f ? load3g(m->albedo) * weight : (float3)(weight);
+            s->weight = wi.z * wo.z < 0.0f ? CLP_M3(m->albedo) * weight : (float3)(weight);
             /* Reflection must stay on wo's side of the triangle, transmission cross it. */
             return (dot(s->wi, ng) * dot(wo_w, ng) > 0.0f) == (wi.z * wo.z > 0.0f);
         }
@@ -331,7 +356,7 @@ inline int material_sample(global const Material* m, float3 ng, float3 ns, float
             s->wi = from_local(&f, normalize(wi));
             /* Radiance is compressed into the denser medium: scale by 1/eta^2
              * (PBR 4th ed., 9.5.2). The tint colours transmitted light only. */
-            s->weight = load3g(m->albedo) / (eta * eta);
+            s->weight = CLP_M3(m->albedo) / (eta * eta);
         }
         /* The sampled side must agree with the geometry, or the path would
          * slip through the triangle. */
@@ -346,6 +371,9 @@ inline int material_sample(global const Material* m, float3 ng, float3 ns, float
 }
 
 /* What the albedo debug view shows. */
-inline float3 material_albedo(global const Material* m) { return load3g(m->albedo); }
+inline float3 material_albedo(CLP_MAT_SPACE const Material* m) { return CLP_M3(m->albedo); }
+
+/* The glTF material's definitions need the GGX functions above. */
+#include "material_gltf.cl"
 
 #endif

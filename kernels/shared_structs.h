@@ -31,7 +31,31 @@ typedef std::uint32_t uint;
 #define CLP_MAT_MIRROR 1u     /* perfect specular reflection tinted by albedo */
 #define CLP_MAT_CONDUCTOR 2u  /* GGX microfacet reflection: roughness, Schlick Fresnel with F0 = albedo */
 #define CLP_MAT_DIELECTRIC 3u /* glass: Fresnel reflection and refraction, ior; rough when roughness > 0 */
-#define CLP_MAT_KIND_COUNT 4u
+#define CLP_MAT_GLTF 4u       /* glTF metallic-roughness: Lambert under a GGX dielectric coat, mixed with a GGX
+                                 conductor by metallic (glTF 2.0 specification, appendix B) */
+#define CLP_MAT_KIND_COUNT 5u
+
+/* Material.alpha_mode: how a surface's coverage (base colour alpha) is used. */
+#define CLP_ALPHA_OPAQUE 0u /* alpha ignored */
+#define CLP_ALPHA_MASK 1u   /* a hit with alpha < alpha_cutoff is not a hit (cut-out) */
+#define CLP_ALPHA_BLEND 2u  /* a hit is kept with probability alpha (stochastic coverage) */
+
+/* Texture addressing and texel formats (TextureDesc.flags). */
+#define CLP_WRAP_REPEAT 0u
+#define CLP_WRAP_CLAMP 1u
+#define CLP_WRAP_MIRROR 2u
+#define CLP_TEXF_WRAP_S_SHIFT 0u /* 2 bits each */
+#define CLP_TEXF_WRAP_T_SHIFT 2u
+#define CLP_TEXF_FLOAT 16u   /* texels are 4 floats (else 4 bytes, RGBA8, in one uint) */
+#define CLP_TEXF_NEAREST 32u /* nearest texel instead of bilinear */
+#define CLP_NO_TEXTURE (-1)
+
+/* Material.texture slots. */
+#define CLP_TEX_BASE 0u     /* base colour (sRGB) and alpha */
+#define CLP_TEX_MR 1u       /* metallic (B) and roughness (G), linear */
+#define CLP_TEX_NORMAL 2u   /* tangent-space normal, linear */
+#define CLP_TEX_EMISSION 3u /* emission (sRGB) */
+#define CLP_TEX_SLOTS 4u
 
 /* Integrators (RenderSettings.integrator); each is compiled in alone. */
 #define CLP_INTEGRATOR_PATH 0u      /* next-event estimation + MIS */
@@ -84,7 +108,10 @@ typedef std::uint32_t uint;
 #define CLP_MIN_SPHERICAL_ELEVATION 0.1f
 
 /* FrameParams.scene_flags. */
-#define CLP_SCENE_NORMALS 1u /* the normals buffer holds per-vertex shading normals */
+#define CLP_SCENE_NORMALS 1u  /* the normals buffer holds per-vertex shading normals */
+#define CLP_SCENE_UVS 2u      /* the attribute buffer holds texture coordinates (6 floats per triangle) */
+#define CLP_SCENE_TANGENTS 4u /* ... then tangents (xyz and sign, 12 floats per triangle) */
+#define CLP_SCENE_COLORS 8u   /* ... then vertex colours (RGBA, 12 floats per triangle) */
 
 /* Material flags. */
 #define CLP_MATF_TWO_SIDED_EMISSION 1u /* emits from the back face too */
@@ -157,11 +184,25 @@ typedef struct {
     uint kind;         /* CLP_MAT_* */
     float emission[3]; /* emitted radiance (W sr^-1 m^-2 per channel) */
     uint flags;        /* CLP_MATF_* */
-    float roughness;   /* conductor and dielectric: GGX alpha = roughness^2; 0 = smooth */
-    float ior;         /* dielectric: index of refraction inside / outside */
+    float roughness;   /* conductor, dielectric, gltf: GGX alpha = roughness^2; 0 = smooth */
+    float ior;         /* dielectric, gltf: index of refraction inside / outside */
+    float metallic;    /* gltf: conductor weight */
+    float alpha;       /* coverage factor (base colour alpha), see alpha_mode */
+    int texture[4];    /* CLP_TEX_* slots: index into the texture descriptors, or CLP_NO_TEXTURE */
+    uint alpha_mode;   /* CLP_ALPHA_* */
+    float alpha_cutoff;
+    float normal_scale; /* normal map: scales the tangent-space x and y */
     uint pad0;
-    uint pad1;
 } Material;
+
+/* One texture in the texel buffer: width x height texels from `offset` (in
+ * uints; a float texel takes 4), row 0 at the top (v = 0), with its addressing. */
+typedef struct {
+    uint offset;
+    uint width;
+    uint height;
+    uint flags; /* CLP_TEXF_* and the wrap modes */
+} TextureDesc;
 
 /* One light of the light table (see CLP_LIGHT_*). */
 typedef struct {
@@ -221,7 +262,8 @@ typedef struct {
     float env_rot_sin;
     uint env_height;
     uint scene_flags;      /* CLP_SCENE_*: what the scene really has, for kernels compiled with every feature */
-    uint pad0, pad1, pad2;
+    uint attr_stride;      /* floats per triangle in the attribute buffer (CLP_SCENE_UVS, _TANGENTS, _COLORS) */
+    uint pad1, pad2;
 } FrameParams;
 
 /* Counters the kernels bump with atomics; the host reads and clears them per launch. */
@@ -274,7 +316,8 @@ CLP_STATIC_ASSERT(__builtin_offsetof(BvhNode, child0) == 12 && __builtin_offseto
                   bvh_node_rows);
 CLP_STATIC_ASSERT(__builtin_offsetof(TriVerts, v1) == 16 && __builtin_offsetof(TriVerts, v2) == 32,
                   tri_verts_rows);
-CLP_STATIC_ASSERT(sizeof(Material) == 48, material_is_48_bytes);
+CLP_STATIC_ASSERT(sizeof(Material) == 80, material_is_80_bytes);
+CLP_STATIC_ASSERT(sizeof(TextureDesc) == 16, texture_desc_is_16_bytes);
 CLP_STATIC_ASSERT(sizeof(CameraData) == 64, camera_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(FrameParams) == 160, frame_params_is_160_bytes);
 CLP_STATIC_ASSERT(sizeof(Light) == 64, light_is_64_bytes);

@@ -6,22 +6,28 @@
  * BVH traversal: a stack of CLP_BVH4_STACK entries (enough for the deepest
  * tree the builder and the widening allow), nearest child first. Nodes hold
  * their four children's boxes, so each step tests four boxes from one
- * 128-byte fetch (shared_structs.h, Bvh4Node). */
+ * 128-byte fetch (shared_structs.h, Bvh4Node).
+ * With CLP_HAS_ALPHA every function takes the alpha scene as a last
+ * argument (CLP_ALPHA_PARAM, textures.cl) and skips cut-out hits. */
 #ifndef CLP_TRAVERSE_CL
 #define CLP_TRAVERSE_CL
 
 #include "common.h"
 #include "intersect.cl"
+#include "textures.cl"
 
 /* TriVerts and BvhNode are rows of four 4-byte fields at 16-byte offsets
  * (shared_structs.h asserts it): one aligned float4 load fetches a vertex or
  * a box corner, where three scalar loads would each be a separate access. */
-inline int intersect_leaf(const RayPre* r, global const TriVerts* tris, uint first, uint count, Hit* hit) {
+inline int intersect_leaf(const RayPre* r, global const TriVerts* tris, uint first, uint count, Hit* hit CLP_ALPHA_PARAM) {
     int found = 0;
     for (uint i = first; i < first + count; ++i) {
         global const float4* tv = (global const float4*)&tris[i];
         float t, b1, b2;
         if (intersect_triangle(r, tv[0].xyz, tv[1].xyz, tv[2].xyz, hit->t, &t, &b1, &b2)) {
+#ifdef CLP_HAS_ALPHA
+            if (!alpha_keeps_hit(alpha, tris[i].prim, b1, b2, r)) continue; /* a cut-out: as if not there (textures.cl) */
+#endif
             hit->t = t;
             hit->b1 = b1;
             hit->b2 = b2;
@@ -52,7 +58,7 @@ typedef Bvh4Node AccelNode;
  * closest hit so far. */
 #define CLP_VISIT_LEAF(k)                                                       \
     if (d.s##k < hit.t && child.s##k < 0) {                                     \
-        if (intersect_leaf(r, tris, (uint)~child.s##k, count.s##k, &hit) && any_hit) return hit; \
+        if (intersect_leaf(r, tris, (uint)~child.s##k, count.s##k, &hit CLP_ALPHA_ARG) && any_hit) return hit; \
     }
 
 /* A child slot, interior pass: still entered before the closest hit (a leaf
@@ -70,7 +76,7 @@ typedef Bvh4Node AccelNode;
  * leaves among them intersected nearest first, and the interior ones pushed
  * farthest first, so the nearest is the next popped. */
 inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
-                         int any_hit, uint* visits) {
+                         int any_hit, uint* visits CLP_ALPHA_PARAM) {
     Hit hit;
     hit.t = tmax;
     hit.tri = -1;
@@ -117,7 +123,7 @@ inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tr
  * The list ends at the first slot whose child is not a leaf. Same contract as
  * traverse_tree. */
 inline Hit traverse_flat(global const BvhNode* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
-                         int any_hit, uint* visits) {
+                         int any_hit, uint* visits CLP_ALPHA_PARAM) {
     Hit hit;
     hit.t = tmax;
     hit.tri = -1;
@@ -127,22 +133,22 @@ inline Hit traverse_flat(global const BvhNode* nodes, global const TriVerts* tri
         if (visits) ++*visits;
         if (n->child0 >= 0) break;
         if (intersect_box(r, load3g(n->lo0), load3g(n->hi0), hit.t) < INFINITY &&
-            intersect_leaf(r, tris, (uint)~n->child0, n->count0, &hit) && any_hit)
+            intersect_leaf(r, tris, (uint)~n->child0, n->count0, &hit CLP_ALPHA_ARG) && any_hit)
             return hit;
         if (n->child1 >= 0) break;
         if (intersect_box(r, load3g(n->lo1), load3g(n->hi1), hit.t) < INFINITY &&
-            intersect_leaf(r, tris, (uint)~n->child1, n->count1, &hit) && any_hit)
+            intersect_leaf(r, tris, (uint)~n->child1, n->count1, &hit CLP_ALPHA_ARG) && any_hit)
             return hit;
     }
     return hit;
 }
 
 inline Hit traverse_bvh(global const AccelNode* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
-                        int any_hit, uint* visits) {
+                        int any_hit, uint* visits CLP_ALPHA_PARAM) {
 #ifdef CLP_ACCEL_FLAT
-    return traverse_flat(nodes, tris, r, tmax, any_hit, visits);
+    return traverse_flat(nodes, tris, r, tmax, any_hit, visits CLP_ALPHA_ARG);
 #else
-    return traverse_tree(nodes, tris, r, tmax, any_hit, visits);
+    return traverse_tree(nodes, tris, r, tmax, any_hit, visits CLP_ALPHA_ARG);
 #endif
 }
 

@@ -33,4 +33,9 @@ done
 # The scaling scene, at 100,000 triangles; it has the thesis camera (800 x 640).
 echo "render_previews.sh: scaling:100000"
 "$clpath" render scaling:100000 --width "$width" --height $((width * 640 / 800)) --spp "$spp" -q -o "$out/scaling.png"
+# Textured scenes: the Suzanne glTF model on its own, and the textured OBJ/MTL scene.
+echo "render_previews.sh: suzanne"
+"$clpath" render "$root/scenes/suzanne/Suzanne.gltf" --width "$width" --height $((width * 3 / 4)) --spp "$spp" -q -o "$out/suzanne.png"
+echo "render_previews.sh: textured"
+"$clpath" render "$root/scenes/textured/textured.json" --width "$width" --height $((width * 3 / 4)) --spp "$spp" -q -o "$out/textured.png"
 echo "render_previews.sh: pictures in $out"

@@ -19,7 +19,7 @@ packages="
     build-essential cmake pkg-config clang libclang-rt-14-dev
     pocl-opencl-icd ocl-icd-opencl-dev opencl-headers clinfo oclgrind
     libglm-dev libglfw3-dev libopenimageio-dev openimageio-tools
-    libtinyobjloader-dev nlohmann-json3-dev libcli11-dev libgtest-dev
+    libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libgtest-dev
     xvfb xauth libimgui-dev glmark2-data
     python3-numpy python3-matplotlib
     libembree-dev

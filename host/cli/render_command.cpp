@@ -26,6 +26,7 @@ namespace {
 // Options left unset (nullopt) take the scene file's value, then the default.
 struct RenderOptions {
     std::string scene = "cornell";
+    std::string gltf_camera;  // a glTF file's camera, by name or index
     std::optional<std::uint64_t> spp;
     double time_limit = 0;
     std::optional<std::uint32_t> max_depth, seed;
@@ -61,7 +62,9 @@ std::vector<std::uint8_t> srgb8_from_linear(const Image& img) {
 int run_render(const RenderOptions& o) {
     // Everything that can be checked before rendering is checked first.
     const auto load_start = std::chrono::steady_clock::now();
-    Scene scene = load_scene(o.scene);
+    LoadOptions load;
+    load.gltf_camera = o.gltf_camera;
+    Scene scene = load_scene(o.scene, load);
     const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
     for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
     if (!o.quiet)
@@ -172,8 +175,9 @@ Command add_render_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("render", "Render a scene progressively and write the image");
     std::string names;
     for (const auto& n : builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
-    cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj) or built-in scene (" + names + ")")
+    cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj), glTF model (.gltf, .glb) or built-in scene (" + names + ")")
         ->capture_default_str();
+    cmd->add_option("--gltf-camera", o->gltf_camera, "A glTF model's camera, by name or index (default: the first)");
     cmd->add_option("--spp", o->spp, "Samples per pixel (default: the scene's, else 64; unlimited with --time)")
         ->check(CLI::Range(std::uint64_t(1), kMaxSamplesPerPixel));
     cmd->add_option("--time", o->time_limit, "Stop after this many seconds")->check(CLI::PositiveNumber);

@@ -23,7 +23,10 @@ std::vector<std::pair<std::string, std::size_t>> DeviceScene::memory_needs(const
             {"shading normals", normal_bytes(s)},
             {"lights", light_bytes(s) + alias_bytes(s)},
             {"environment image", s.environment.pixels.size() * sizeof(float)},
-            {"environment distribution", s.environment.cdf.size() * sizeof(float)}};
+            {"environment distribution", s.environment.cdf.size() * sizeof(float)},
+            {"surface attributes", std::max<std::size_t>(16, s.surface.attrs.size() * sizeof(float))},
+            {"textures", std::max<std::size_t>(16, s.surface.textures.size() * sizeof(TextureDesc)) +
+                             std::max<std::size_t>(16, s.surface.texels.size() * sizeof(std::uint32_t))}};
 }
 
 DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s) : ctx_(ctx), summary_(s.summary) {
@@ -49,11 +52,20 @@ DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s) : ctx_(ctx), summ
                              s.environment.pixels.data());
     env_cdf_ = ctx.buffer(s.environment.cdf.size() * sizeof(float), CL_MEM_READ_ONLY, "environment distribution",
                           s.environment.cdf.data());
+    // Texture coordinates, tangents, colours and textures: a 16-byte stand-in when the scene has none.
+    auto upload = [&](std::size_t bytes, const void* data, const char* what) {
+        return bytes ? ctx.buffer(bytes, CL_MEM_READ_ONLY, what, data)
+                     : ctx.buffer(16, CL_MEM_READ_ONLY, what, zeros.data());
+    };
+    const SurfaceBuffers& sb = s.surface;
+    attrs_ = upload(sb.attrs.size() * sizeof(float), sb.attrs.data(), "surface attributes");
+    tex_desc_ = upload(sb.textures.size() * sizeof(TextureDesc), sb.textures.data(), "texture descriptors");
+    texels_ = upload(sb.texels.size() * sizeof(std::uint32_t), sb.texels.data(), "texels");
 }
 
 void DeviceScene::bind(Kernel& k, cl_uint first) const {
-    const Buffer* args[kArgCount] = {&nodes_,  &tris_,  &tri_material_, &materials_, &normals_,
-                                     &lights_, &alias_, &env_pixels_,   &env_cdf_};
+    const Buffer* args[kArgCount] = {&nodes_,  &tris_,  &tri_material_, &materials_, &normals_, &lights_,
+                                     &alias_,  &env_pixels_, &env_cdf_, &attrs_,  &tex_desc_, &texels_};
     for (cl_uint i = 0; i < kArgCount; ++i) k.arg(first + i, *args[i]);
 }
 

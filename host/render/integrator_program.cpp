@@ -84,7 +84,8 @@ void IntegratorProgram::launch_band(const DeviceScene& scene, Film& film, const 
     fp.env_scale = sc.environment_scale;
     fp.env_rot_cos = std::cos(sc.environment_rotation);
     fp.env_rot_sin = std::sin(sc.environment_rotation);
-    fp.scene_flags = sc.features.normals ? CLP_SCENE_NORMALS : 0u;
+    fp.scene_flags = (sc.features.normals ? CLP_SCENE_NORMALS : 0u) | sc.surface_flags;
+    fp.attr_stride = sc.attr_stride;
     const Counters zero{};
     ctx_.write(params_, &fp, sizeof fp);
     ctx_.write(counters_, &zero, sizeof zero);

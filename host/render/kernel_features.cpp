@@ -5,7 +5,7 @@
 namespace clpath {
 namespace {
 // Indexed by CLP_MAT_*; upper-cased in the CLP_HAS_MAT_* switches.
-const char* const kMaterialNames[CLP_MAT_KIND_COUNT] = {"diffuse", "mirror", "conductor", "dielectric"};
+const char* const kMaterialNames[CLP_MAT_KIND_COUNT] = {"diffuse", "mirror", "conductor", "dielectric", "gltf"};
 
 std::string upper(std::string s) {
     for (char& c : s) c = char(std::toupper(static_cast<unsigned char>(c)));
@@ -22,7 +22,10 @@ SceneFeatures scene_features(const Scene& scene) {
         const Material& m = scene.materials[i];
         f.materials[m.kind] = true;
         f.emission = f.emission || emits(m);
+        for (int t : m.texture) f.textures = f.textures || t != CLP_NO_TEXTURE;
+        f.alpha = f.alpha || m.alpha_mode != CLP_ALPHA_OPAQUE;
     }
+    f.vertex_colors = !scene.colors.empty();
     f.lights = !scene.lights.empty();
     f.environment = scene.environment.emits();
     f.environment_map = f.environment && !scene.environment.image.empty();
@@ -42,6 +45,9 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
     if (settings.all_features) {
         f.materials.fill(true);
         f.emission = f.environment = f.environment_map = f.normals = true;
+        f.textures = f.vertex_colors = true;
+        // Alpha changes traversal's signature (textures.cl): it follows the scene, even here.
+        f.alpha = scene.alpha;
         f.triangle_lights = f.delta_lights = path;
         f.uniform_hemisphere = uniform;
         return f;
@@ -53,6 +59,9 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
     f.environment = light_transport && scene.environment;
     f.environment_map = f.environment && scene.environment_map;
     f.normals = scene.normals;
+    f.textures = scene.textures;
+    f.vertex_colors = scene.vertex_colors;
+    f.alpha = scene.alpha;
     f.uniform_hemisphere = uniform && scene.materials[CLP_MAT_DIFFUSE];  // no diffuse surface: nothing to change
     return f;
 }
@@ -67,6 +76,9 @@ std::string build_options(const KernelFeatures& f) {
     if (f.environment) o += " -DCLP_HAS_ENV";
     if (f.environment_map) o += " -DCLP_HAS_ENV_MAP";
     if (f.normals) o += " -DCLP_HAS_NORMALS";
+    if (f.textures) o += " -DCLP_HAS_TEXTURES";
+    if (f.vertex_colors) o += " -DCLP_HAS_VERTEX_COLORS";
+    if (f.alpha) o += " -DCLP_HAS_ALPHA";
     if (f.flat_accel) o += " -DCLP_ACCEL_FLAT";
     if (f.uniform_hemisphere) o += " -DCLP_UNIFORM_HEMISPHERE";
     o += " -DCLP_INTEGRATOR=" + std::to_string(f.integrator) + "u";

@@ -22,6 +22,9 @@ struct KernelFeatures {
     bool normals = false;          // interpolated shading normals
     bool flat_accel = false;       // traverse the flat list of object boxes, not the BVH (CLP_ACCEL_FLAT)
     bool uniform_hemisphere = false;  // diffuse bounces sample the hemisphere uniformly
+    bool textures = false;       // some material maps a texture (CLP_HAS_TEXTURES)
+    bool vertex_colors = false;  // per-vertex colours multiply base colours (CLP_HAS_VERTEX_COLORS)
+    bool alpha = false;          // MASK or BLEND coverage is tested in traversal (CLP_HAS_ALPHA)
     std::uint32_t integrator = CLP_INTEGRATOR_PATH;
     std::uint32_t max_depth = 16;
 
@@ -32,11 +35,13 @@ struct KernelFeatures {
 struct SceneFeatures {
     std::array<bool, CLP_MAT_KIND_COUNT> materials{};  // kinds some triangle uses
     bool emission = false, lights = false, environment = false, environment_map = false, normals = false;
+    bool textures = false, vertex_colors = false, alpha = false;
 };
 SceneFeatures scene_features(const Scene& scene);
 
 // What this scene, rendered with these settings, uses. With settings.all_features
-// every feature is on, whatever the scene holds.
+// every feature is on, whatever the scene holds, except alpha, which follows
+// the scene (it changes traversal's arguments, kernels/textures.cl).
 KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings& settings);
 
 // "-cl-std=CL1.2 -DCLP_HAS_MAT_DIFFUSE -DCLP_HAS_EMISSION ... -DCLP_INTEGRATOR=0u -DCLP_MAX_DEPTH=16u"

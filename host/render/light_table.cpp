@@ -48,6 +48,10 @@ LightTable build_light_table(const Scene& scene, const KernelFeatures& f, const 
         for (std::size_t i = 0; i < scene.triangle_count(); ++i) {
             const Material& m = scene.materials[scene.triangle_material[i]];
             if (!emits(m)) continue;
+            // An emission texture or a cut-out varies the emitted light across the
+            // triangle: such emitters are found by BSDF sampling alone (unbiased),
+            // never light-sampled with the material's constant emission.
+            if (m.texture[CLP_TEX_EMISSION] != CLP_NO_TEXTURE || m.alpha_mode != CLP_ALPHA_OPAQUE) continue;
             const glm::vec3 le = load3(m.emission);
             const glm::vec3 a = scene.vertices[3 * i], b = scene.vertices[3 * i + 1], c = scene.vertices[3 * i + 2];
             const double area = 0.5 * glm::length(glm::cross(glm::dvec3(b - a), glm::dvec3(c - a)));

@@ -22,7 +22,14 @@ void validate_scene(const Scene& s) {
         if (m.kind >= CLP_MAT_KIND_COUNT) throw Error("material '" + name + "': unknown kind");
         if (m.kind == CLP_MAT_DIELECTRIC && !(m.ior > 0))
             throw Error("material '" + name + "': index of refraction must be positive");
+        for (int t : m.texture)
+            if (t != CLP_NO_TEXTURE && (t < 0 || std::size_t(t) >= s.textures.size()))
+                throw Error("internal: material '" + name + "' names texture " + std::to_string(t));
     }
+    if ((!s.uvs.empty() && s.uvs.size() != s.vertices.size()) ||
+        (!s.tangents.empty() && s.tangents.size() != s.vertices.size()) ||
+        (!s.colors.empty() && s.colors.size() != s.vertices.size()))
+        throw Error("internal: scene '" + s.name + "' has texture coordinates, tangents or colours for some vertices only");
 }
 
 float bounding_diagonal(const std::vector<glm::vec3>& vertices) {
@@ -74,6 +81,9 @@ std::shared_ptr<const PreparedScene> prepare_scene(const Scene& scene, const Ren
     p->normals = scene.normals;
     p->lights = std::move(lights.lights);
     p->light_alias = std::move(lights.alias);
+    p->surface = pack_surface_buffers(scene);
+    sum.attr_stride = p->surface.attr_stride;
+    sum.surface_flags = p->surface.scene_flags;
     return p;
 }
 

@@ -16,6 +16,7 @@
 #include "render/environment_map.hpp"
 #include "render/kernel_features.hpp"
 #include "render/light_table.hpp"
+#include "render/surface_buffers.hpp"
 #include "render/settings.hpp"
 #include "scene/scene.hpp"
 #include "shared_structs.h"
@@ -37,6 +38,8 @@ struct SceneSummary {
     float environment_scale = 1;
     float environment_rotation = 0;  // radians about +y
     float diagonal = 1;              // of the bounding box; 1 for a degenerate one
+    std::uint32_t attr_stride = 0;   // FrameParams.attr_stride (render/surface_buffers.hpp)
+    std::uint32_t surface_flags = 0; // CLP_SCENE_UVS, _TANGENTS, _COLORS
 };
 
 struct PreparedScene {
@@ -50,6 +53,7 @@ struct PreparedScene {
     std::vector<Light> lights;
     std::vector<AliasEntry> light_alias;  // parallel to lights
     EnvironmentMap environment;
+    SurfaceBuffers surface;  // texture coordinates, tangents, colours and textures
 };
 
 // Builds the structure of settings.accel with settings.bvh (the other settings

@@ -4,6 +4,7 @@
 #include <functional>
 #include <string>
 
+#include "image/texture_io.hpp"
 #include "scene/obj_mesh.hpp"
 
 namespace clpath {
@@ -21,6 +22,11 @@ struct LoadOptions {
     // A scene with more triangles is refused before it is built: a bound on
     // memory for the loader, and far beyond what a device holds today.
     std::size_t max_triangles = 50'000'000;
+    // Turns a texture file's bytes into texels (OpenImageIO); fuzzers swap in their own.
+    std::function<TextureImage(const std::string& bytes, const std::string& name)> decode_texture = clpath::decode_texture;
+    // Which camera of a glTF file to use: its name, or its index in the
+    // file's cameras; empty: the first one the node hierarchy places.
+    std::string gltf_camera;
 };
 
 }  // namespace clpath

@@ -1,5 +1,6 @@
 #include "scene/obj_mesh.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -241,10 +242,11 @@ Material from_mtl(const tinyobj::material_t& m, const std::string& mtl_file) {
     return out;
 }
 
+// Texture maps clpath does not read (map_Kd and map_d it does).
 bool has_texture(const tinyobj::material_t& m) {
-    return !(m.ambient_texname.empty() && m.diffuse_texname.empty() && m.specular_texname.empty() &&
+    return !(m.ambient_texname.empty() && m.specular_texname.empty() &&
              m.specular_highlight_texname.empty() && m.bump_texname.empty() && m.displacement_texname.empty() &&
-             m.alpha_texname.empty() && m.reflection_texname.empty() && m.roughness_texname.empty() &&
+             m.reflection_texname.empty() && m.roughness_texname.empty() &&
              m.metallic_texname.empty() && m.sheen_texname.empty() && m.emissive_texname.empty() &&
              m.normal_texname.empty());
 }
@@ -316,6 +318,22 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
             om.name = m.name;
             om.defined = true;
             om.material = from_mtl(m, path);
+            if (!m.diffuse_texname.empty() || !m.alpha_texname.empty()) {
+                // A textured surface: the glTF material, base colour from map_Kd
+                // (Kd is the colour where the map is absent), metallic Pm,
+                // roughness Pr or from Ns, cut out by map_d.
+                const fs::path dir = fs::path(path).parent_path();
+                auto resolve = [&](const std::string& n) { return n.empty() ? n : (dir / n).lexically_normal().string(); };
+                om.diffuse_texture = resolve(m.diffuse_texname);
+                om.alpha_texture = resolve(m.alpha_texname);
+                float rough = float(m.roughness);
+                if (rough == 0) rough = m.shininess > 1 && m.shininess < 1000 ? float(std::pow(2.0 / (m.shininess + 2.0), 0.25)) : 1.0f;
+                const glm::vec3 base = om.diffuse_texture.empty() ? vec(m.diffuse) : glm::vec3(1);
+                Material g = gltf_material(base, float(m.metallic), rough);
+                for (int i = 0; i < 3; ++i) g.emission[i] = om.material.emission[i];
+                if (!om.alpha_texture.empty()) g.alpha_mode = CLP_ALPHA_MASK;
+                om.material = g;
+            }
             textures = textures || has_texture(m);
             tmap[m.name] = int(tmats.size());
             tmats.push_back(m);
@@ -339,7 +357,7 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
         tmats.push_back(tm);
         mesh.materials.push_back(om);
     }
-    if (textures) mesh.warnings.push_back(file + ": texture maps in its materials are ignored");
+    if (textures) mesh.warnings.push_back(file + ": texture maps other than map_Kd and map_d in its materials are ignored");
     if (scan.lines_points)
         mesh.warnings.push_back(file + ": " + std::to_string(scan.lines_points) + " line and point elements ignored");
 
@@ -354,13 +372,16 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
     const bool need_tag = scan.first_usemtl_line && (!scan.first_mtllib_line || scan.first_usemtl_line < scan.first_mtllib_line);
     const std::string statements = statements_clpath_reads(text);
     std::istringstream in(need_tag ? std::string("mtllib ") + kMaterialsTag + "\n" + statements : statements);
-    const bool ok = tinyobj::LoadObj(&attrib, &shapes, &unused, &warn, &err, &in, &reader, true);
+    const bool ok = tinyobj::LoadObj(&attrib, &shapes, &unused, &warn, &err, &in, &reader, true, false);
     if (!ok || !err.empty()) throw Error(file + ": " + (err.empty() ? "tinyobjloader could not read it" : err));
     if (attrib.vertices.size() != scan.v * 3 || attrib.normals.size() != scan.vn * 3)
         throw Error(file + ": internal: tinyobjloader read a different number of vertices than the line check");
 
     const std::size_t nv = attrib.vertices.size() / 3, nn = attrib.normals.size() / 3;
     const bool with_normals = nn > 0;
+    const std::size_t nt = attrib.texcoords.size() / 2;
+    const bool with_colors = attrib.colors.size() == attrib.vertices.size() &&
+                             std::any_of(attrib.colors.begin(), attrib.colors.end(), [](tinyobj::real_t c) { return c != 1; });
     for (const auto& shape : shapes) {
         const auto& m = shape.mesh;
         std::size_t first = 0;
@@ -376,6 +397,15 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
                     if (idx.vertex_index < 0 || std::size_t(idx.vertex_index) >= nv)
                         throw Error(file + ": internal: vertex index out of range after the line check");
                     mesh.vertices.push_back(vec(&attrib.vertices[3 * std::size_t(idx.vertex_index)]));
+                    if (nt > 0) {
+                        const bool has = idx.texcoord_index >= 0 && std::size_t(idx.texcoord_index) < nt;
+                        const tinyobj::real_t* t = has ? &attrib.texcoords[2 * std::size_t(idx.texcoord_index)] : nullptr;
+                        mesh.uvs.push_back(t ? glm::vec2(float(t[0]), 1.0f - float(t[1])) : glm::vec2(0));
+                    }
+                    if (with_colors) {
+                        const tinyobj::real_t* c = &attrib.colors[3 * std::size_t(idx.vertex_index)];
+                        mesh.colors.push_back(glm::clamp(glm::vec4(float(c[0]), float(c[1]), float(c[2]), 1.0f), 0.0f, 1.0f));
+                    }
                     if (with_normals) {
                         const bool has = idx.normal_index >= 0 && std::size_t(idx.normal_index) < nn;
                         mesh.normals.push_back(has ? vec(&attrib.normals[3 * std::size_t(idx.normal_index)])

@@ -23,6 +23,10 @@ struct ObjMaterial {
     bool defined = false;  // false: named by usemtl but by no .mtl file
     int usemtl_line = 0;   // the first usemtl naming it, for messages
     Material material{};   // from the .mtl, when defined (docs/scene-format.md has the mapping)
+    // map_Kd and map_d, resolved against the .mtl's folder; empty: none. A
+    // material with either is the glTF material (CLP_MAT_GLTF) and its
+    // texture slot is filled in by the scene that loads the images.
+    std::string diffuse_texture, alpha_texture;
 };
 
 struct ObjMesh {
@@ -30,6 +34,8 @@ struct ObjMesh {
     // Empty when the file has no vertex normals; else 3 per triangle, and a zero
     // vector at a corner that has none (the triangle is then shaded flat).
     std::vector<glm::vec3> normals;
+    std::vector<glm::vec2> uvs;    // empty, or 3 per triangle: vt with v flipped (row 0 at v = 0, as glTF)
+    std::vector<glm::vec4> colors; // empty, or 3 per triangle: the "v x y z r g b" extension, alpha 1
     std::vector<int> triangle_material;  // index into materials; -1: before any usemtl
     std::vector<ObjMaterial> materials;
     std::vector<std::string> warnings;   // what was read but ignored (textures, lines, points)

@@ -43,6 +43,9 @@ void Scene::add_triangles(const std::vector<glm::vec3>& tris, std::uint32_t mate
     vertices.insert(vertices.end(), tris.begin(), tris.end());
     triangle_object.insert(triangle_object.end(), tris.size() / 3, next_object_id());
     triangle_material.insert(triangle_material.end(), tris.size() / 3, material);
+    if (!uvs.empty()) uvs.resize(vertices.size(), glm::vec2(0));
+    if (!tangents.empty()) tangents.resize(vertices.size(), glm::vec4(0));
+    if (!colors.empty()) colors.resize(vertices.size(), glm::vec4(1));
 }
 
 bool Scene::has_emitter() const {
@@ -55,22 +58,41 @@ bool Scene::has_emitter() const {
     return false;
 }
 
-Material diffuse(glm::vec3 albedo) {
+Material base_material() {
     Material m{};
+    for (int& t : m.texture) t = CLP_NO_TEXTURE;
+    m.alpha = 1;
+    m.alpha_cutoff = 0.5f;
+    m.normal_scale = 1;
+    m.ior = 1.5f;
+    return m;
+}
+
+Material gltf_material(glm::vec3 base_color, float metallic, float roughness) {
+    Material m = base_material();
+    m.kind = CLP_MAT_GLTF;
+    store3(m.albedo, base_color);
+    m.metallic = metallic;
+    m.roughness = roughness;
+    return m;
+}
+
+Material diffuse(glm::vec3 albedo) {
+    Material m = base_material();
     m.kind = CLP_MAT_DIFFUSE;
     store3(m.albedo, albedo);
     return m;
 }
 
 Material mirror(glm::vec3 tint) {
-    Material m{};
+    Material m = base_material();
     m.kind = CLP_MAT_MIRROR;
     store3(m.albedo, tint);
     return m;
 }
 
 Material conductor(glm::vec3 f0, float roughness) {
-    Material m{};
+    Material m = base_material();
     m.kind = CLP_MAT_CONDUCTOR;
     store3(m.albedo, f0);
     m.roughness = roughness;
@@ -78,7 +100,7 @@ Material conductor(glm::vec3 f0, float roughness) {
 }
 
 Material dielectric(float ior, float roughness, glm::vec3 tint) {
-    Material m{};
+    Material m = base_material();
     m.kind = CLP_MAT_DIELECTRIC;
     store3(m.albedo, tint);
     m.ior = ior;
@@ -87,7 +109,7 @@ Material dielectric(float ior, float roughness, glm::vec3 tint) {
 }
 
 Material emitter(glm::vec3 radiance, bool two_sided, glm::vec3 albedo) {
-    Material m{};
+    Material m = base_material();
     m.kind = CLP_MAT_DIFFUSE;
     store3(m.emission, radiance);
     store3(m.albedo, albedo);

@@ -55,6 +55,20 @@ struct SceneRenderDefaults {
     float ao_distance = 0;                        // 0: a tenth of the scene's bounding-box diagonal
 };
 
+// A decoded texture image with the addressing its file asks for. 8-bit files
+// keep their bytes (RGBA8, as stored: sRGB decoding is the reader's, per use);
+// float files (EXR, HDR) keep linear RGBA floats.
+struct Texture {
+    std::string name;  // for messages: the file or glTF path it came from
+    int width = 0, height = 0;
+    bool is_float = false;
+    std::vector<std::uint8_t> rgba8;  // 4 per texel, row 0 at the top
+    std::vector<float> rgba32;        // 4 per texel, when is_float
+    std::uint32_t wrap_s = CLP_WRAP_REPEAT, wrap_t = CLP_WRAP_REPEAT;
+    bool nearest = false;
+    std::size_t texel_bytes() const { return is_float ? rgba32.size() * sizeof(float) : rgba8.size(); }
+};
+
 struct Scene {
     std::string name;
     // Three vertices per triangle; a triangle's front face is the side from
@@ -68,6 +82,14 @@ struct Scene {
     std::vector<std::string> material_names;  // parallel to materials
     // Empty (flat shading), or three per triangle, parallel to vertices.
     std::vector<glm::vec3> normals;
+    // Each empty, or three per triangle, parallel to vertices: texture
+    // coordinates (TEXCOORD_0, v down as in glTF), tangents (xyz, w the
+    // bitangent's sign; a zero xyz means "derive one"), and vertex colours
+    // (RGBA, multiplying the base colour; 1 where a mesh has none).
+    std::vector<glm::vec2> uvs;
+    std::vector<glm::vec4> tangents;
+    std::vector<glm::vec4> colors;
+    std::vector<Texture> textures;  // Material::texture indexes these
     std::vector<PunctualLight> lights;
     Environment environment;
     Camera camera;
@@ -98,6 +120,10 @@ inline glm::vec3 load3(const float* p) { return {p[0], p[1], p[2]}; }
 // Some channel of the material's emission is positive.
 inline bool emits(const Material& m) { return m.emission[0] > 0 || m.emission[1] > 0 || m.emission[2] > 0; }
 
+// Every field at its neutral value: no textures, opaque, ior 1.5.
+Material base_material();
+// The glTF metallic-roughness material (CLP_MAT_GLTF) without textures.
+Material gltf_material(glm::vec3 base_color, float metallic, float roughness);
 Material diffuse(glm::vec3 albedo);
 Material mirror(glm::vec3 tint = glm::vec3(1));
 Material conductor(glm::vec3 f0, float roughness);

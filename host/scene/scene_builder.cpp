@@ -33,7 +33,8 @@ void SceneBuilder::reserve(std::size_t triangles, const std::string& label) cons
 }
 
 void SceneBuilder::add(const std::vector<glm::vec3>& vertices, const std::vector<glm::vec3>& normals,
-                       const glm::mat4& m, const std::vector<std::uint32_t>& materials, const std::string& label) {
+                       const glm::mat4& m, const std::vector<std::uint32_t>& materials, const std::string& label,
+                       const VertexAttributes& attributes) {
     const std::size_t n = vertices.size() / 3;
     reserve(n, label);
     const glm::mat3 l(m);
@@ -56,6 +57,21 @@ void SceneBuilder::add(const std::vector<glm::vec3>& vertices, const std::vector
         }
         with_normals_ = true;
     }
+    // Attributes stay empty or complete: the first object that has one fills
+    // it in for everything before it, and later objects without it get the default.
+    auto given = [&](const auto* v) { return v && !v->empty(); };
+    auto start = [&](auto& dst, const auto* src, auto fallback, bool& active) {
+        if (given(src) && !active) {
+            dst.assign(scene_.vertices.size(), fallback);
+            active = true;
+        }
+        if (active) dst.reserve(dst.size() + vertices.size());
+    };
+    const glm::vec2 no_uv(0);
+    const glm::vec4 no_tangent(0), white(1);
+    start(scene_.uvs, attributes.uvs, no_uv, with_uvs_);
+    start(scene_.tangents, attributes.tangents, no_tangent, with_tangents_);
+    start(scene_.colors, attributes.colors, white, with_colors_);
     scene_.vertices.reserve(scene_.vertices.size() + vertices.size());
     scene_.triangle_material.reserve(scene_.triangle_material.size() + n);
     if (with_normals_) scene_.normals.reserve(scene_.normals.size() + vertices.size());
@@ -73,6 +89,24 @@ void SceneBuilder::add(const std::vector<glm::vec3>& vertices, const std::vector
         scene_.vertices.insert(scene_.vertices.end(), {p[0], p[c1], p[c2]});
         scene_.triangle_material.push_back(materials.size() == 1 ? materials[0] : materials[t]);
         scene_.triangle_object.push_back(object);
+        const int corner[3] = {0, c1, c2};
+        for (int c : corner) {
+            const std::size_t i = 3 * t + std::size_t(c);
+            if (with_uvs_) scene_.uvs.push_back(given(attributes.uvs) ? (*attributes.uvs)[i] : no_uv);
+            if (with_colors_) scene_.colors.push_back(given(attributes.colors) ? (*attributes.colors)[i] : white);
+            if (with_tangents_) {
+                glm::vec4 tg = no_tangent;
+                if (given(attributes.tangents)) {
+                    // Tangents are directions on the surface: they move with the
+                    // linear part; a mirroring transform flips the bitangent.
+                    const glm::vec4 src = (*attributes.tangents)[i];
+                    const glm::vec3 d = l * glm::vec3(src);
+                    const float len = glm::length(d);
+                    if (len > 0 && std::isfinite(len)) tg = glm::vec4(d / len, (src.w < 0 ? -1.0f : 1.0f) * (flip ? -1.0f : 1.0f));
+                }
+                scene_.tangents.push_back(tg);
+            }
+        }
         if (!with_normals_) continue;
         const glm::vec3 flat = flat_normal(p[0], p[c1], p[c2]);
         glm::vec3 out[3] = {flat, flat, flat};

@@ -5,12 +5,15 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <limits>
 #include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scene/gltf_scene.hpp"
 #include "scene/json_fields.hpp"
 #include "scene/obj_mesh.hpp"
+#include "scene/obj_textures.hpp"
 #include "scene/render_names.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/shapes.hpp"
@@ -148,6 +151,15 @@ Bumps read_bumps(const Value& v, bool with_function) {
     if (auto f = o.get("frequency")) b.frequency = f->real(Range{0, 10000});
     o.finish();
     return b;
+}
+
+bool textured(const ObjMaterial& om) { return !om.diffuse_texture.empty() || !om.alpha_texture.empty(); }
+
+std::vector<bool> used_materials(const ObjMesh& mesh) {
+    std::vector<bool> used(mesh.materials.size(), false);
+    for (int mi : mesh.triangle_material)
+        if (mi >= 0) used[std::size_t(mi)] = true;
+    return used;
 }
 
 std::size_t icosphere_triangles(int level) { return std::size_t(20) << (2 * level); }
@@ -304,6 +316,7 @@ private:
         const bool smooth = o.get("smooth") ? o.get("smooth")->boolean() : true;
         const bool normalize = o.get("normalize") ? o.get("normalize")->boolean() : false;
         o.finish();
+        if (is_gltf_file(path)) return read_gltf(file_v, path, material, materials, smooth, normalize, m, label);
 
         auto& cached = meshes_[path];
         if (!cached) {
@@ -334,11 +347,18 @@ private:
         const bool has_all = material.has_value();
         const std::uint32_t all = has_all ? scene_material(*material) : 0;
         std::vector<std::uint32_t> index(mesh.materials.size());
+        const std::vector<bool> used = used_materials(mesh);
         for (std::size_t i = 0; i < mesh.materials.size(); ++i) {
             const ObjMaterial& om = mesh.materials[i];
+            if (!used[i] && textured(om)) continue;  // its images are not loaded for nothing
             if (auto it = overrides.find(om.name); it != overrides.end()) index[i] = it->second;
             else if (has_all) index[i] = all;
-            else if (om.defined) index[i] = mesh_material(path + ":" + om.name, om.material);
+            else if (om.defined) {
+                const std::string name = path + ":" + om.name;
+                auto it = material_index_.find(name);
+                index[i] = it != material_index_.end() ? it->second
+                                                       : mesh_material(name, obj_material_with_textures(scene_, om, options_));
+            }
             else
                 throw Error(path + ":" + std::to_string(om.usemtl_line) + ": usemtl '" + om.name +
                             "': no .mtl file defines it, and " + label +
@@ -374,7 +394,55 @@ private:
             return;
         }
         static const std::vector<glm::vec3> kNone;
-        builder_.add(mesh.vertices, smooth ? mesh.normals : kNone, place, tri_mat, label);
+        VertexAttributes attr{&mesh.uvs, nullptr, &mesh.colors};
+        builder_.add(mesh.vertices, smooth ? mesh.normals : kNone, place, tri_mat, label, attr);
+    }
+
+    // A glTF model as a mesh: its materials unless the object overrides them
+    // ("material" for all, "materials" by glTF material name), its lights; its cameras are not used.
+    void read_gltf(const Value& file_v, const std::string& path, const std::optional<Value>& material,
+                   const std::optional<Value>& materials, bool smooth, bool normalize, glm::mat4 place,
+                   const std::string& label) {
+        const bool exists = options_.file_exists ? options_.file_exists(path) : fs::is_regular_file(path);
+        if (!exists) file_v.fail(path + ": no such file");
+        const GltfModel model = load_gltf(path, options_);
+        scene_.warnings.insert(scene_.warnings.end(), model.warnings.begin(), model.warnings.end());
+        std::map<int, std::uint32_t> by_index;
+        if (materials) {
+            Object mo(*materials);
+            for (auto& [key, v] : mo.entries()) {
+                int found = -2;
+                for (std::size_t i = 0; i < model.materials.size(); ++i)
+                    if (model.materials[i].name == key) found = int(i);
+                if (found == -2) v.fail("the model " + path + " has no material named '" + key + "'");
+                by_index[found] = scene_material(v);
+            }
+        }
+        const std::optional<std::uint32_t> all = material ? std::optional(scene_material(*material)) : std::nullopt;
+        auto override_for = [&](int gm) {
+            if (auto it = by_index.find(gm); it != by_index.end()) return it->second;
+            return all ? *all : std::numeric_limits<std::uint32_t>::max();
+        };
+        if (model.triangle_count() == 0) {
+            scene_.warnings.push_back(label + ": the model " + path + " places no triangles");
+            return;
+        }
+        if (normalize) {
+            glm::vec3 lo(INFINITY), hi(-INFINITY);
+            for (const auto& inst : model.instances)
+                for (const auto& p : model.meshes[inst.mesh])
+                    for (const auto& v : p.vertices) {
+                        const glm::vec3 w(inst.world * glm::vec4(v, 1));
+                        lo = glm::min(lo, w);
+                        hi = glm::max(hi, w);
+                    }
+            const glm::vec3 ext = hi - lo;
+            const float longest = std::max({ext.x, ext.y, ext.z});
+            if (longest > 0 && std::isfinite(longest))
+                place = place * glm::scale(glm::mat4(1), glm::vec3(1 / longest)) *
+                        glm::translate(glm::mat4(1), -(lo + hi) * 0.5f);
+        }
+        add_gltf(scene_, builder_, model, place, path, smooth, override_for);
     }
 
     PunctualLight read_light(Object o) {
@@ -462,12 +530,14 @@ Scene obj_scene(const std::string& file, const LoadOptions& options) {
     s.warnings = mesh.warnings;
     if (mesh.triangle_count() == 0) throw Error(file + ": the mesh has no faces (an empty scene)");
     std::vector<std::uint32_t> index(mesh.materials.size());
+    const std::vector<bool> used = used_materials(mesh);
     for (std::size_t i = 0; i < mesh.materials.size(); ++i) {
         const ObjMaterial& om = mesh.materials[i];
+        if (!used[i] && textured(om)) continue;
         if (!om.defined)
             throw Error(file + ":" + std::to_string(om.usemtl_line) + ": usemtl '" + om.name +
                         "': no .mtl file defines it");
-        index[i] = s.add_material(om.name, om.material);
+        index[i] = s.add_material(om.name, obj_material_with_textures(s, om, options));
     }
     std::vector<std::uint32_t> tri_mat(mesh.triangle_count());
     std::optional<std::uint32_t> grey;
@@ -481,7 +551,8 @@ Scene obj_scene(const std::string& file, const LoadOptions& options) {
         }
     }
     SceneBuilder builder(s, options.max_triangles);
-    builder.add(mesh.vertices, mesh.normals, glm::mat4(1), tri_mat, file);
+    VertexAttributes attr{&mesh.uvs, nullptr, &mesh.colors};
+    builder.add(mesh.vertices, mesh.normals, glm::mat4(1), tri_mat, file, attr);
     builder.finish();
     if (s.triangle_count() == 0) throw Error(file + ": every triangle is degenerate (an empty scene)");
 
@@ -489,19 +560,7 @@ Scene obj_scene(const std::string& file, const LoadOptions& options) {
     for (auto m : s.triangle_material) lit = lit || emits(s.materials[m]);
     if (!lit) s.environment.color = glm::vec3(1);
 
-    // Frame the bounding sphere in a 40 degree view from -z, a little above.
-    glm::vec3 lo(INFINITY), hi(-INFINITY);
-    for (const auto& v : s.vertices) {
-        lo = glm::min(lo, v);
-        hi = glm::max(hi, v);
-    }
-    const glm::vec3 centre = (lo + hi) * 0.5f;
-    const float radius = std::max(0.5f * glm::length(hi - lo), 1e-6f);
-    s.camera.vfov_degrees = 40;
-    s.camera.width = 640;
-    s.camera.height = 480;
-    s.camera.target = centre;
-    s.camera.eye = centre + glm::normalize(glm::vec3(0, 0.25f, -1)) * (radius / std::sin(glm::radians(18.0f)));
+    s.camera = framing_camera(s);
     return s;
 }
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "scene/builtin_scenes.hpp"
+#include "scene/gltf_scene.hpp"
 #include "scene/scene_file.hpp"
 #include "util/error.hpp"
 
@@ -16,12 +17,13 @@ Scene load_scene(const std::string& spec, const LoadOptions& options) {
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     if (ext == ".json") return parse_scene_file(options.read_file(spec), spec, options);
     if (ext == ".obj") return obj_scene(spec, options);
+    if (ext == ".gltf" || ext == ".glb") return gltf_scene(spec, options);
     // A file of another kind is named as such, rather than as an unknown built-in.
     std::error_code ec;
     if (spec.find('/') != std::string::npos || fs::exists(spec, ec)) {
         if (fs::is_directory(spec, ec)) throw Error(spec + ": is a folder, not a scene file");
         if (fs::exists(spec, ec))
-            throw Error(spec + ": unknown scene file type '" + ext + "' (clpath reads .json scene files and .obj meshes)");
+            throw Error(spec + ": unknown scene file type '" + ext + "' (clpath reads .json scene files, .obj meshes and .gltf/.glb models)");
         throw Error(spec + ": no such file");
     }
     return builtin_scene(spec);

@@ -142,3 +142,10 @@ clpath_cli_test(export.mitsuba ARGS export ${CMAKE_SOURCE_DIR}/scenes/cornell-th
                 OUTPUT "wrote .*thesis-mitsuba.json and 7 meshes: Mitsuba 3, 196 triangles, 32x26, max depth 16")
 clpath_cli_test(export.unknown_format FAIL ARGS export ${CMAKE_SOURCE_DIR}/scenes/cornell-thesis.json
                 ${CLI_OUT}/thesis-pbrt.json --format pbrt OUTPUT "format" FORBID ${CLI_OUT}/thesis-pbrt.json)
+
+# glTF: a model renders from the command line; a broken one names its glTF path and writes nothing.
+clpath_scene_cli_test(render_gltf ARGS render ${CMAKE_SOURCE_DIR}/scenes/suzanne/Suzanne.gltf --spp 1 --width 40
+                      --height 30 -o ${CLI_OUT}/suzanne.pfm OUTPUT "summary: device=.* triangles=3936 ")
+clpath_scene_cli_test(gltf_bad_index FAIL ARGS render ${SCENE_DATA}/bad-index.gltf -o ${CLI_OUT}/bad-gltf.pfm
+                      OUTPUT "bad-index.gltf: meshes\\[0\\]\\.primitives\\[0\\]\\.indices: index 9 at position 5 is out of range"
+                      FORBID ${CLI_OUT}/bad-gltf.pfm)

@@ -149,7 +149,12 @@ kernel void probe_bsdf_sample(global const Material* m, float wox, float woy, fl
     float3 n = (float3)(0.0f, 0.0f, 1.0f);
     float u1 = rng_next(&r), u2 = rng_next(&r), u3 = rng_next(&r);
     BsdfSample s;
+#ifdef CLP_SURFACE_PARAMS
+    Material mp = *m; /* materials are private copies in programs with textures (textures.cl) */
+    int ok = material_sample(&mp, n, n, (float3)(wox, woy, woz), u1, u2, u3, &s);
+#else
     int ok = material_sample(m, n, n, (float3)(wox, woy, woz), u1, u2, u3, &s);
+#endif
     wi_pdf[i] = ok ? (float4)(s.wi, s.pdf) : (float4)(0.0f, 0.0f, 0.0f, -1.0f);
     weight[i] = ok ? (float4)(s.weight, (float)s.delta) : (float4)(0.0f);
 }
@@ -161,7 +166,12 @@ kernel void probe_bsdf_eval(global const Material* m, uint count, global const f
     if (i >= count) return;
     float3 n = (float3)(0.0f, 0.0f, 1.0f);
     float pdf;
+#ifdef CLP_SURFACE_PARAMS
+    Material mp = *m;
+    float3 f = material_eval(&mp, n, n, wo[i].xyz, wi[i].xyz, &pdf);
+#else
     float3 f = material_eval(m, n, n, wo[i].xyz, wi[i].xyz, &pdf);
+#endif
     out[i] = (float4)(f, pdf);
 }
 
@@ -185,5 +195,21 @@ kernel void probe_triangle_light(global const Light* l, float px, float py, floa
     out[i] = (float4)(q, s.pdf);
     pdf_out[i] = triangle_sample_pdf(l, p, s.wi, length(q - p));
 }
+
+#ifdef CLP_HAS_TEXTURES
+/* out[i] = texture `index` sampled at uv[i] (sRGB decoded when srgb). */
+kernel void probe_texture(global const TextureDesc* desc, global const uint* texels, int index, int srgb, uint count,
+                          global const float2* uv, global float4* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    SurfaceData sd;
+    sd.desc = desc;
+    sd.texels = texels;
+    sd.attrs = 0;
+    sd.attr_stride = 0;
+    sd.flags = 0;
+    out[i] = texture_sample(&sd, index, uv[i], srgb);
+}
+#endif
 
 #endif

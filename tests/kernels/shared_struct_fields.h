@@ -7,7 +7,7 @@
 
 #define CLP_SHARED_STRUCTS(S) \
     S(BvhNode) S(Bvh4Node) S(TriVerts) S(Material) S(Light) S(AliasEntry) S(CameraData) S(FrameParams) S(Counters) \
-    S(AccumPixel) S(BatchRay) S(Hit)
+    S(AccumPixel) S(BatchRay) S(Hit) S(TextureDesc)
 
 #define CLP_SHARED_FIELDS(F) \
     F(BvhNode, lo0) F(BvhNode, child0) F(BvhNode, hi0) F(BvhNode, count0) \
@@ -16,7 +16,8 @@
     F(Bvh4Node, child) F(Bvh4Node, count) \
     F(TriVerts, v0) F(TriVerts, prim) F(TriVerts, v1) F(TriVerts, light) F(TriVerts, v2) F(TriVerts, pad2) \
     F(Material, albedo) F(Material, kind) F(Material, emission) F(Material, flags) F(Material, roughness) \
-    F(Material, ior) F(Material, pad0) F(Material, pad1) \
+    F(Material, ior) F(Material, metallic) F(Material, alpha) F(Material, texture) F(Material, alpha_mode) \
+    F(Material, alpha_cutoff) F(Material, normal_scale) F(Material, pad0) \
     F(Light, a) F(Light, type) F(Light, b) F(Light, flags) F(Light, c) F(Light, cos_outer) F(Light, L) \
     F(Light, cos_inner) \
     F(AliasEntry, prob) F(AliasEntry, alias) F(AliasEntry, pmf) F(AliasEntry, pad) \
@@ -27,10 +28,11 @@
     F(FrameParams, pixel_count) F(FrameParams, light_count) F(FrameParams, env_light) F(FrameParams, ao_distance) \
     F(FrameParams, depth_scale) F(FrameParams, env_color) F(FrameParams, env_width) F(FrameParams, env_scale) \
     F(FrameParams, env_rot_cos) F(FrameParams, env_rot_sin) F(FrameParams, env_height) F(FrameParams, scene_flags) \
-    F(FrameParams, pad0) F(FrameParams, pad1) F(FrameParams, pad2) \
+    F(FrameParams, attr_stride) F(FrameParams, pad1) F(FrameParams, pad2) \
     F(Counters, rays) F(Counters, nonfinite) F(Counters, pad0) F(Counters, pad1) \
     F(AccumPixel, sum) F(AccumPixel, comp) \
     F(BatchRay, o) F(BatchRay, tmax) F(BatchRay, d) F(BatchRay, src) \
-    F(Hit, t) F(Hit, b1) F(Hit, b2) F(Hit, tri)
+    F(Hit, t) F(Hit, b1) F(Hit, b2) F(Hit, tri) \
+    F(TextureDesc, offset) F(TextureDesc, width) F(TextureDesc, height) F(TextureDesc, flags)
 
 #endif

@@ -1,6 +1,7 @@
 // OBJ meshes and MTL materials: what is read, how MTL maps to clpath
 // materials, and that every broken file is refused with FILE:LINE.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -137,12 +138,33 @@ TEST(ObjMaterials, OutOfRangeValuesNameFileMaterialAndKey) {
     EXPECT_NE(parse_error("mtllib x.mtl\n", files).find("m/x.mtl: material 'neg': Ke"), std::string::npos);
 }
 
-TEST(ObjMaterials, TexturesAreIgnoredWithAWarning) {
+TEST(ObjMaterials, UnreadTextureMapsAreIgnoredWithAWarning) {
     MemoryFiles files;
-    files.files["m/x.mtl"] = "newmtl a\nKd 1 1 1\nmap_Kd wood.png\n";
+    files.files["m/x.mtl"] = "newmtl a\nKd 1 1 1\nmap_Ks shine.png\n";
     const ObjMesh m = parse("mtllib x.mtl\n", files);
     ASSERT_EQ(m.warnings.size(), 1u);
-    EXPECT_EQ(m.warnings[0], "m/mesh.obj: texture maps in its materials are ignored");
+    EXPECT_EQ(m.warnings[0], "m/mesh.obj: texture maps other than map_Kd and map_d in its materials are ignored");
+}
+
+TEST(ObjMaterials, DiffuseAndAlphaMapsMakeTheGltfMaterial) {
+    MemoryFiles files;
+    files.files["m/x.mtl"] = "newmtl a\nKd 0.5 0.5 0.5\nNs 100\nPm 0.25\nmap_Kd tex/wood.png\nmap_d tex/mask.png\n";
+    const ObjMesh m = parse("mtllib x.mtl\nv 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                            "usemtl a\nf 1/1 2/2 3/3\n", files);
+    ASSERT_EQ(m.materials.size(), 1u);
+    const ObjMaterial& om = m.materials[0];
+    EXPECT_EQ(om.material.kind, CLP_MAT_GLTF);
+    EXPECT_EQ(om.material.alpha_mode, CLP_ALPHA_MASK);
+    EXPECT_FLOAT_EQ(om.material.metallic, 0.25f);
+    EXPECT_NEAR(om.material.roughness, std::pow(2.0 / 102.0, 0.25), 1e-6);
+    EXPECT_EQ(om.diffuse_texture, "m/tex/wood.png");
+    EXPECT_EQ(om.alpha_texture, "m/tex/mask.png");
+    // vt v runs up, glTF's down: flipped. Vertex colours as given.
+    ASSERT_EQ(m.uvs.size(), 3u);
+    EXPECT_EQ(m.uvs[1], glm::vec2(1, 1));
+    EXPECT_EQ(m.uvs[2], glm::vec2(0, 0));
+    ASSERT_EQ(m.colors.size(), 3u);
+    EXPECT_EQ(m.colors[1], glm::vec4(0, 1, 0, 1));
 }
 
 TEST(ObjMaterials, UsemtlBeforeMtllibAndUndefinedNames) {

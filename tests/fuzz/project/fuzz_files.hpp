@@ -14,6 +14,12 @@ namespace clpath::fuzz {
 inline void check_scene(const Scene& s) {
     if (s.vertices.size() != s.triangle_count() * 3) __builtin_trap();
     if (!s.normals.empty() && s.normals.size() != s.vertices.size()) __builtin_trap();
+    if (!s.uvs.empty() && s.uvs.size() != s.vertices.size()) __builtin_trap();
+    if (!s.tangents.empty() && s.tangents.size() != s.vertices.size()) __builtin_trap();
+    if (!s.colors.empty() && s.colors.size() != s.vertices.size()) __builtin_trap();
+    for (const auto& m : s.materials)
+        for (int t : m.texture)
+            if (t != CLP_NO_TEXTURE && (t < 0 || std::size_t(t) >= s.textures.size())) __builtin_trap();
     for (auto m : s.triangle_material)
         if (m >= s.materials.size()) __builtin_trap();
     (void)camera_data(s.camera);  // throws clpath::Error for a bad camera, never crashes
@@ -26,6 +32,11 @@ inline const std::map<std::string, std::string>& files() {
          "usemtl other\nf 1 3 2\n"},
         {"fuzz/mesh.mtl", "newmtl red\nKd 0.8 0.1 0.1\nnewmtl lamp\nKe 5 5 5\n"},
         {"fuzz/sky.exr", ""},
+        // For glTF inputs: one quad (4 positions, 6 uint16 indices), and a 2x1 texture.
+        {"fuzz/model.bin", std::string("\0\0\0\0\0\0\0\0\0\0\0\0\0\0\x80\x3f\0\0\0\0\0\0\0\0"
+                                       "\0\0\x80\x3f\0\0\x80\x3f\0\0\0\0\0\0\0\0\0\0\x80\x3f\0\0\0\0"
+                                       "\0\0\x01\0\x02\0\0\0\x02\0\x03\0", 60)},
+        {"fuzz/texture.rgba", std::string("RGBA\x02\x01\xff\0\0\xff\0\xff\0\x80", 14)},
     };
     return f;
 }

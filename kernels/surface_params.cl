@@ -1,0 +1,92 @@
+/* A hit's material with its textures and vertex colour applied
+ * (CLP_SURFACE_PARAMS, textures.cl): base colour x texture (sRGB) x vertex
+ * colour; roughness x G and metallic x B of the metallic-roughness texture
+ * (glTF's channel layout); emission x emission texture (sRGB); and the
+ * shading normal bent by a tangent-space normal map. */
+
+#ifndef CLP_SURFACE_PARAMS_CL
+#define CLP_SURFACE_PARAMS_CL
+
+#include "textures.cl"
+#include "materials.cl"
+
+#ifdef CLP_SURFACE_PARAMS
+
+#ifdef CLP_HAS_TEXTURES
+/* The tangent frame's tangent and bitangent sign at a hit: from the mesh's
+ * tangents when it has them, else derived from how the texture coordinates
+ * run across the triangle (constant per triangle). glTF's convention:
+ * bitangent = cross(normal, tangent) * sign points along -v (v runs down the image). */
+inline float4 surface_tangent(const SurfaceData* sd, global const TriVerts* tv, float b1, float b2) {
+    uint prim = tv->prim;
+    if (sd->flags & CLP_SCENE_TANGENTS) {
+        global const float* a = surface_attrs(sd, prim) + surface_tangent_offset(sd);
+        float4 t = (1.0f - b1 - b2) * vload4(0, a) + b1 * vload4(1, a) + b2 * vload4(2, a);
+        if (dot(t.xyz, t.xyz) > 0.0f) return (float4)(t.xyz, vload4(0, a).w < 0.0f ? -1.0f : 1.0f);
+    }
+    if (!(sd->flags & CLP_SCENE_UVS)) return (float4)(0.0f);
+    global const float* a = surface_attrs(sd, prim);
+    float2 uv0 = vload2(0, a), d1 = vload2(1, a) - uv0, d2 = vload2(2, a) - uv0;
+    float3 v0 = load3g(tv->v0), e1 = load3g(tv->v1) - v0, e2 = load3g(tv->v2) - v0;
+    float r = d1.x * d2.y - d2.x * d1.y;
+    if (!(fabs(r) > 0.0f)) return (float4)(0.0f);
+    float3 dpdu = (e1 * d2.y - e2 * d1.y) / r, dpdv = (e2 * d1.x - e1 * d2.x) / r;
+    float3 n = cross(e1, e2);
+    return (float4)(dpdu, dot(cross(n, dpdu), dpdv) > 0.0f ? -1.0f : 1.0f);
+}
+
+inline float3 normal_mapped(const SurfaceData* sd, global const Material* gm, global const TriVerts* tv, float b1,
+                            float b2, float2 uv, float3 ns) {
+    float3 tn = texture_sample(sd, gm->texture[CLP_TEX_NORMAL], uv, 0).xyz * 2.0f - 1.0f;
+    tn.x *= gm->normal_scale;
+    tn.y *= gm->normal_scale;
+    float4 t = surface_tangent(sd, tv, b1, b2);
+    float3 T = t.xyz - ns * dot(ns, t.xyz);
+    float len = length(T);
+    if (!(len > 0.0f) || !isfinite(len)) return ns;
+    T /= len;
+    float3 B = cross(ns, T) * t.w;
+    float3 n = T * tn.x + B * tn.y + ns * tn.z;
+    float nl = length(n);
+    return nl > 0.0f && isfinite(nl) ? n / nl : ns;
+}
+#endif
+
+inline void surface_params(const SurfaceData* sd, global const Material* gm, global const TriVerts* tv, float b1,
+                           float b2, float3* ns, Material* out) {
+    *out = *gm;
+    float3 base = CLP_M3(gm->albedo);
+#ifdef CLP_HAS_VERTEX_COLORS
+    base *= surface_color(sd, tv->prim, b1, b2).xyz;
+#endif
+#ifdef CLP_HAS_TEXTURES
+    int any = gm->texture[0] != CLP_NO_TEXTURE || gm->texture[1] != CLP_NO_TEXTURE ||
+              gm->texture[2] != CLP_NO_TEXTURE || gm->texture[3] != CLP_NO_TEXTURE;
+    if (any) {
+        float2 uv = surface_uv(sd, tv->prim, b1, b2);
+        int t = gm->texture[CLP_TEX_BASE];
+        if (t != CLP_NO_TEXTURE) base *= texture_sample(sd, t, uv, 1).xyz;
+        t = gm->texture[CLP_TEX_MR];
+        if (t != CLP_NO_TEXTURE) {
+            float4 mr = texture_sample(sd, t, uv, 0);
+            out->roughness *= mr.y;
+            out->metallic *= mr.z;
+        }
+        t = gm->texture[CLP_TEX_EMISSION];
+        if (t != CLP_NO_TEXTURE) {
+            float3 e = CLP_M3(gm->emission) * texture_sample(sd, t, uv, 1).xyz;
+            out->emission[0] = e.x;
+            out->emission[1] = e.y;
+            out->emission[2] = e.z;
+        }
+        if (gm->texture[CLP_TEX_NORMAL] != CLP_NO_TEXTURE) *ns = normal_mapped(sd, gm, tv, b1, b2, uv, *ns);
+    }
+#endif
+    out->albedo[0] = base.x;
+    out->albedo[1] = base.y;
+    out->albedo[2] = base.z;
+}
+
+#endif
+
+#endif

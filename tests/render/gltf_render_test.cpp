@@ -1,0 +1,170 @@
+// Textures, alpha cut-outs and the glTF material through the renderer: a
+// MASK cut-out is skipped by camera and shadow rays alike (with OPAQUE as the
+// control), and the Suzanne model renders its base-colour texture.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "scene/scene_builder.hpp"
+#include "scene/scene_loader.hpp"
+#include "support/render_helpers.hpp"
+
+using namespace clpath;
+
+namespace {
+
+std::string scenes_dir() {
+    return (std::filesystem::path(__FILE__).parent_path() / ".." / ".." / "scenes").lexically_normal().string();
+}
+
+// A 2x1 texture: the left half (u < 0.5) transparent, the right opaque; both black.
+Texture cutout_texture() {
+    Texture t;
+    t.width = 2;
+    t.height = 1;
+    t.rgba8 = {0, 0, 0, 0, 0, 0, 0, 255};
+    t.wrap_s = t.wrap_t = CLP_WRAP_CLAMP;
+    t.nearest = true;
+    return t;
+}
+
+// A square of side 2 centred at c, spanned by axes a and b (front: a x b), u along a.
+void add_square(Scene& s, glm::vec3 c, glm::vec3 a, glm::vec3 b, std::uint32_t material, bool with_uv) {
+    const glm::vec3 p[4] = {c - a - b, c + a - b, c + a + b, c - a + b};
+    const glm::vec2 uv[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+    std::vector<glm::vec3> v = {p[0], p[1], p[2], p[0], p[2], p[3]};
+    std::vector<glm::vec2> t = {uv[0], uv[1], uv[2], uv[0], uv[2], uv[3]};
+    SceneBuilder builder(s, 1000);
+    VertexAttributes attr;
+    if (with_uv) attr.uvs = &t;
+    builder.add(v, {}, glm::mat4(1), {material}, "square", attr);
+}
+
+Material cutout_material(std::uint32_t mode) {
+    Material m = gltf_material(glm::vec3(1), 1.0f, 0.5f);  // times the black texture: black metal
+    m.texture[CLP_TEX_BASE] = 0;
+    m.alpha_mode = mode;
+    return m;
+}
+
+// Mean of channel 0 over the columns [x0, x1) of the image.
+double column_mean(const Image& img, int x0, int x1) {
+    double sum = 0;
+    int n = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = x0; x < x1; ++x, ++n) sum += img.at(x, y, 0);
+    return sum / n;
+}
+
+RenderSettings path_settings() {
+    RenderSettings s;
+    s.seed = 3;
+    s.max_depth = 4;
+    return s;
+}
+
+}  // namespace
+
+// Camera rays: through the transparent half the white sky is seen exactly.
+TEST(GltfRender, MaskCutoutSeenThroughByCameraRays) {
+    for (std::uint32_t mode : {CLP_ALPHA_MASK, CLP_ALPHA_OPAQUE}) {
+        Scene s;
+        s.textures.push_back(cutout_texture());
+        const std::uint32_t m = s.add_material("cutout", cutout_material(mode));
+        add_square(s, glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), m, true);  // faces +z
+        s.environment.color = glm::vec3(1);
+        s.camera.eye = {0, 0, 3};
+        s.camera.target = {0, 0, 0};
+        s.camera.vfov_degrees = 20;  // the square fills the view
+        s.camera.width = s.camera.height = 16;
+        const Image img = test::render(s, path_settings(), 4).linear;
+        const double left = column_mean(img, 0, 6), right = column_mean(img, 10, 16);
+        // Camera looks down -z with right = +x... the texture's left half (u < 0.5) is at x < 0.
+        const double open = std::max(left, right), closed = std::min(left, right);
+        if (mode == CLP_ALPHA_MASK) {
+            EXPECT_NEAR(open, 1.0, 1e-6) << "the sky, seen through the cut-out";
+            EXPECT_LT(closed, 0.3) << "black metal reflecting the sky only at grazing Fresnel";
+        } else {
+            EXPECT_LT(open, 0.3) << "OPAQUE ignores alpha";
+        }
+    }
+}
+
+// Shadow and bounce rays: a horizontal cut-out square over a white floor, lit
+// straight down by a directional light; the floor is lit only under the cut-out.
+TEST(GltfRender, MaskCutoutLetsShadowRaysThrough) {
+    for (std::uint32_t mode : {CLP_ALPHA_MASK, CLP_ALPHA_OPAQUE}) {
+        Scene s;
+        s.textures.push_back(cutout_texture());
+        const std::uint32_t floor = s.add_material("floor", diffuse(glm::vec3(0.8f)));
+        const std::uint32_t m = s.add_material("cutout", cutout_material(mode));
+        add_square(s, glm::vec3(0), glm::vec3(0, 0, 10), glm::vec3(10, 0, 0), floor, true);  // faces +y
+        add_square(s, glm::vec3(0, 1, 0), glm::vec3(0, 0, 4), glm::vec3(4, 0, 0), m, true);  // u along z
+        PunctualLight sun;
+        sun.type = PunctualLight::Type::Directional;
+        sun.direction = {0, -1, 0};
+        sun.intensity = glm::vec3(1);
+        s.lights.push_back(sun);
+        // Looking straight down from below the square at the floor under it.
+        s.camera.eye = {0, 0.5f, 0};
+        s.camera.target = {0, 0, 0};
+        s.camera.up = {0, 0, 1};
+        s.camera.vfov_degrees = 90;
+        s.camera.width = s.camera.height = 16;
+        const Image img = test::render(s, path_settings(), 16).linear;
+        // The floor under the square spans z in [-1/2, 1/2] of the view; the
+        // square's transparent half is z < 0. Compare two bands of rows.
+        double lit = 0, dark = 0;
+        for (int x = 4; x < 12; ++x)
+            for (int y = 0; y < 4; ++y) {
+                lit += img.at(x, y, 0) / 32;
+                dark += img.at(x, 15 - y, 0) / 32;
+            }
+        const double bright = std::max(lit, dark), dim = std::min(lit, dark);
+        // Directly lit floor: 0.8 / pi of an irradiance of 1.
+        if (mode == CLP_ALPHA_MASK) {
+            EXPECT_NEAR(bright, 0.8 / 3.14159265, 0.02) << "under the cut-out the light arrives";
+            EXPECT_LT(dim, 0.02) << "under the opaque half it does not";
+        } else {
+            EXPECT_LT(bright, 0.02) << "OPAQUE: all shadow";
+        }
+    }
+}
+
+// The repository's Suzanne: its first-hit albedo shows the base-colour
+// texture (colours within the texture's range, not the untextured white).
+TEST(GltfRender, SuzanneShowsItsBaseColourTexture) {
+    Scene s = load_scene(scenes_dir() + "/suzanne/Suzanne.gltf");
+    s.camera.width = 48;
+    s.camera.height = 36;
+    RenderSettings albedo;
+    albedo.integrator = CLP_INTEGRATOR_ALBEDO;
+    const Image img = test::render(s, albedo, 1).linear;
+    // The texture's decoded colour range.
+    const Texture& t = s.textures[0];
+    glm::vec3 lo(1), hi(0);
+    auto dec = [](int b) { double c = b / 255.0; return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4)); };
+    for (std::size_t i = 0; i < t.rgba8.size(); i += 4)
+        for (int c = 0; c < 3; ++c) {
+            lo[c] = std::min(lo[c], dec(t.rgba8[i + c]));
+            hi[c] = std::max(hi[c], dec(t.rgba8[i + c]));
+        }
+    int on_model = 0;
+    double mean_r = 0, mean_b = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            if (img.at(x, y, 0) + img.at(x, y, 1) + img.at(x, y, 2) == 0) continue;  // the sky
+            ++on_model;
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_GE(img.at(x, y, c), lo[c] - 1e-5f);
+                EXPECT_LE(img.at(x, y, c), hi[c] + 1e-5f);
+            }
+            mean_r += img.at(x, y, 0);
+            mean_b += img.at(x, y, 2);
+        }
+    ASSERT_GT(on_model, 100);  // the model covers about a tenth of the frame
+    EXPECT_LT(mean_r / on_model, 0.9) << "not the untextured white";
+    EXPECT_NE(mean_r, mean_b) << "coloured";
+}
