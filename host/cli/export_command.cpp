@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "scene/obj_export.hpp"
 #include "scene/scene_loader.hpp"
 #include "util/error.hpp"
@@ -24,10 +25,18 @@ struct ExportArgs {
 int run_export(const ExportArgs& o) {
     namespace fs = std::filesystem;
     const fs::path json = o.out;
-    if (json.extension() != ".json") throw Error("output " + o.out + ": must end in .json (the OBJ and MTL go beside it)");
+    if (json.extension() != ".json")
+        throw UsageError("output " + o.out + ": must end in .json (the OBJ and MTL go beside it)");
     const std::string stem = json.stem().string();
     const fs::path obj = fs::path(json).replace_extension(".obj"), mtl = fs::path(json).replace_extension(".mtl");
-    for (const auto& p : {json, obj, mtl}) check_text_output_path(p.string());
+    // The folder is made (as render makes out/) only once the export has
+    // succeeded; what can be checked before is checked here.
+    const fs::path folder = json.parent_path();
+    std::error_code ec;
+    if (!folder.empty() && fs::exists(folder, ec) && !fs::is_directory(folder, ec))
+        throw UsageError("output " + o.out + ": " + folder.string() + " is a file, not a folder");
+    if (fs::is_directory(folder.empty() ? fs::path(".") : folder, ec))
+        for (const auto& p : {json, obj, mtl}) check_text_output_path(p.string());
 
     Scene scene = load_scene(o.scene);
     for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
@@ -40,9 +49,12 @@ int run_export(const ExportArgs& o) {
     } catch (const Error& err) {
         throw Error(o.scene + ": cannot export: " + err.what());
     }
+    if (!folder.empty() && !fs::is_directory(folder, ec)) {
+        fs::create_directories(folder, ec);
+        if (ec) throw Error("output " + o.out + ": cannot create the folder " + folder.string() + ": " + ec.message());
+    }
     // The scene file last: it is what names the other two. A failure removes
     // what this run wrote.
-    std::error_code ec;
     try {
         write_text_file(obj.string(), e.obj);
         write_text_file(mtl.string(), e.mtl);
@@ -62,14 +74,19 @@ int run_export(const ExportArgs& o) {
 Command add_export_command(CLI::App& app) {
     auto o = std::make_shared<ExportArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "export", "Write a scene of diffuse and emissive surfaces as OBJ + MTL + a scene file (for Cycles references)");
+        "export", "Write a scene as OBJ + MTL + a scene file (for Cycles references)");
+    cmd->footer(
+        "Exportable: diffuse materials, emitters (one- or two-sided), flat-shaded triangles and a constant-colour\n"
+        "environment. Refused, naming the first one met: mirror, conductor (glossy) and dielectric (glass)\n"
+        "materials, smooth shading normals, punctual lights (point, spot, directional: so a bare mesh's default\n"
+        "sun too) and environment images. The output folder is created if missing.");
     cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj) or built-in scene")->required();
     cmd->add_option("out", o->out, "Output scene file NAME.json; NAME.obj and NAME.mtl are written beside it")
         ->required();
-    cmd->add_option("--width", o->width, "Image width (default: the scene's)")->check(CLI::Range(1, 16384));
-    cmd->add_option("--height", o->height, "Image height (default: the scene's)")->check(CLI::Range(1, 16384));
+    cmd->add_option("--width", o->width, "Image width (default: the scene's)")->check(whole_number(1, 16384));
+    cmd->add_option("--height", o->height, "Image height (default: the scene's)")->check(whole_number(1, 16384));
     cmd->add_option("--max-depth", o->max_depth, "Maximum bounces to record (default: the scene's)")
-        ->check(CLI::Range(0, 1024));
+        ->check(whole_number(0, 1024));
     return [o] { return run_export(*o); };
 }
 

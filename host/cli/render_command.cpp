@@ -1,3 +1,4 @@
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -8,8 +9,11 @@
 
 #include "cl/context.hpp"
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
+#include "cli/scene_overrides.hpp"
 #include "image/image.hpp"
+#include "image/tone_map.hpp"
 #include "render/renderer.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/scene_loader.hpp"
@@ -35,12 +39,33 @@ struct RenderOptions {
     int leaf_size = 4, bins = 16;
     bool quiet = false;
     std::string accel = "bvh";
+    float exposure = 0;
+    std::string tonemap = "clamp";
+    std::optional<std::string> camera, env;
+    bool no_ground = false;
 };
+
+bool is_bare_mesh(const std::string& spec) {
+    std::string ext = std::filesystem::path(spec).extension().string();
+    for (auto& c : ext) c = char(std::tolower((unsigned char)c));
+    return ext == ".obj" || ext == ".gltf" || ext == ".glb";
+}
 
 int run_render(const RenderOptions& o) {
     // Everything that can be checked before rendering is checked first.
     const auto load_start = std::chrono::steady_clock::now();
-    Scene scene = load_scene(o.scene);
+    LoadOptions load;
+    load.presentation.ground = !o.no_ground;
+    if (o.env) load.presentation.environment = parse_env_option(*o.env);
+    if (o.no_ground && !is_bare_mesh(o.scene))
+        std::fprintf(stderr, "clpath: warning: --no-ground has no effect on %s: only a bare mesh gets a ground\n",
+                     o.scene.c_str());
+    Scene scene = load_scene(o.scene, load);
+    if (load.presentation.environment) scene.environment = *load.presentation.environment;
+    if (o.camera) scene.camera = apply_camera_option(*o.camera, scene.camera);
+    DisplaySettings display;
+    display.exposure_stops = o.exposure;
+    display.tone_map = parse_tone_map(o.tonemap);
     const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
     for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
     if (!o.quiet)
@@ -96,21 +121,30 @@ int run_render(const RenderOptions& o) {
     Progress progress(spp, o.time_limit, !o.quiet);
     const auto t0 = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+    double seconds_per_sample = 0;  // measured on the way
     for (;;) {
         const std::uint64_t done = renderer.stats().samples_per_pixel;
         if (spp && done >= spp) break;
         if (o.time_limit > 0 && elapsed() >= o.time_limit) break;
         // One sample per step when a time limit is set, so the limit is kept closely;
-        // otherwise steps of up to 1/20 of the total, for a smooth progress bar.
+        // otherwise steps of up to 1/20 of the total, for a smooth progress bar,
+        // and of about a second at most, so that progress is reported often.
         std::uint64_t step = o.time_limit > 0 ? 1 : std::max<std::uint64_t>(1, spp / 20);
+        if (seconds_per_sample > 0)
+            step = std::min(step, std::max<std::uint64_t>(1, std::uint64_t(1.0 / seconds_per_sample)));
         if (spp) step = std::min(step, spp - done);
         if (done + step > kMaxSamplesPerPixel) break;
+        const double before = elapsed();
         renderer.add_samples(std::uint32_t(step));
-        progress.update(renderer.stats().samples_per_pixel, elapsed());
+        const double after = elapsed();
+        seconds_per_sample = (after - before) / double(step);
+        progress.update(renderer.stats().samples_per_pixel, after);
     }
     progress.finish();
     const double wall = elapsed();
     RenderedImage image = renderer.resolve();
+    // PNG gets the display transform; EXR and PFM keep the linear radiance.
+    if (!display.is_identity()) image.srgb8 = display_srgb8(image.linear, display);
     for (const auto& out : outputs) {
         write_image(out, image);
         if (!o.quiet) std::fprintf(stderr, "clpath: wrote %s\n", out.c_str());
@@ -141,10 +175,10 @@ Command add_render_command(CLI::App& app) {
     cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj) or built-in scene (" + names + ")")
         ->capture_default_str();
     cmd->add_option("--spp", o->spp, "Samples per pixel (default: the scene's, else 64; unlimited with --time)")
-        ->check(CLI::Range(std::uint64_t(1), kMaxSamplesPerPixel));
-    cmd->add_option("--time", o->time_limit, "Stop after this many seconds")->check(CLI::PositiveNumber);
+        ->check(whole_number(1, kMaxSamplesPerPixel));
+    cmd->add_option("--time", o->time_limit, "Stop after this many seconds")->check(real_number(0, 31536000, true));
     cmd->add_option("--max-depth", o->max_depth, "Maximum bounces (0: emitters only; default 16)")
-        ->check(CLI::Range(0, 1024));
+        ->check(whole_number(0, 1024));
     cmd->add_option("--rr", o->rr, "Russian roulette: throughput (default, unbiased), depth (the thesis rule), none")
         ->check(CLI::IsMember(rr_rule_names()));
     cmd->add_option("--integrator,-i", o->integrator, "Integrator: path (default: NEE + MIS), path-bsdf, ao, "
@@ -155,23 +189,40 @@ Command add_render_command(CLI::App& app) {
         ->check(CLI::IsMember(hemisphere_names()))
         ->capture_default_str();
     cmd->add_option("--ao-distance", o->ao_distance, "Ambient occlusion ray length (default: 1/10 of the scene size)")
-        ->check(CLI::PositiveNumber);
+        ->check(real_number(0, 1e9, true));
     cmd->add_flag("--all-features", o->all_features,
                   "Compile every material, light and integrator feature in (for comparison with the specialised kernels)");
     cmd->add_option("--rr-min-depth", o->rr_min_depth, "Bounces before throughput roulette starts")
-        ->check(CLI::Range(0, 1024))
+        ->check(whole_number(0, 1024))
         ->capture_default_str();
-    cmd->add_option("--seed", o->seed, "Random seed (default 0)");
-    cmd->add_option("--width", o->width, "Image width (default: the scene's)")->check(CLI::Range(1, 16384));
-    cmd->add_option("--height", o->height, "Image height (default: the scene's)")->check(CLI::Range(1, 16384));
+    cmd->add_option("--seed", o->seed, "Random seed (default 0)")->check(whole_number(0, 4294967295u));
+    cmd->add_option("--width", o->width, "Image width (default: the scene's)")->check(whole_number(1, 16384));
+    cmd->add_option("--height", o->height, "Image height (default: the scene's)")->check(whole_number(1, 16384));
     cmd->add_option("--out,-o", o->outputs,
                     "Output image, .png (8-bit sRGB), .exr or .pfm (linear float); repeatable "
-                    "(default: out/SCENE.png and out/SCENE.exr)");
-    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
-    cmd->add_option("--leaf-size", o->leaf_size, "BVH: most triangles per leaf")
-        ->check(CLI::Range(1, 64))
+                    "(default: out/SCENE.png and out/SCENE.exr, the folder out/ created)");
+    cmd->add_option("--exposure", o->exposure, "PNG only: brighten by this many stops (radiance x 2^stops)")
+        ->check(real_number(-20, 20))
         ->capture_default_str();
-    cmd->add_option("--bins", o->bins, "BVH: SAH bins per axis")->check(CLI::Range(2, 256))->capture_default_str();
+    cmd->add_option("--tonemap", o->tonemap,
+                    "PNG only: clamp (clip at white), reinhard (L/(1+L) on luminance) or aces (Narkowicz's "
+                    "fitted ACES filmic curve); EXR and PFM stay linear")
+        ->check(CLI::IsMember(tone_map_names()))
+        ->capture_default_str();
+    cmd->add_option("--camera", o->camera,
+                    "Camera override, any of 'from=X,Y,Z;to=X,Y,Z;fov=DEGREES;up=X,Y,Z' (quote it: ';' is a "
+                    "shell separator)");
+    cmd->add_option("--env", o->env,
+                    "Environment override: a colour R,G,B (or one grey value) or an equirectangular .hdr/.exr "
+                    "image; for a bare mesh it replaces the default sky and sun");
+    cmd->add_flag("--no-ground", o->no_ground, "A bare mesh gets no ground plane");
+    cmd->add_option("--device,-d", o->device,
+                    "OpenCL device: cpu, gpu (the first of that type), an index or a name substring (see 'clpath "
+                    "devices'; default $CLPATH_DEVICE, else the first GPU, else the first CPU)");
+    cmd->add_option("--leaf-size", o->leaf_size, "BVH: most triangles per leaf")
+        ->check(whole_number(1, 64))
+        ->capture_default_str();
+    cmd->add_option("--bins", o->bins, "BVH: SAH bins per axis")->check(whole_number(2, 256))->capture_default_str();
     cmd->add_option("--accel", o->accel, "Acceleration structure: bvh, or flat (one box per object, the thesis "
                     "renderer's; a baseline)")
         ->check(CLI::IsMember(accel_names()))

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "scene/obj_mesh.hpp"
+#include "scene/presentation.hpp"
 
 namespace clpath {
 
@@ -21,6 +22,8 @@ struct LoadOptions {
     // A scene with more triangles is refused before it is built: a bound on
     // memory for the loader, and far beyond what a device holds today.
     std::size_t max_triangles = 50'000'000;
+    // How a bare mesh (no camera, no lights of its own) is presented.
+    PresentationOptions presentation;
 };
 
 }  // namespace clpath

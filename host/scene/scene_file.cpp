@@ -339,10 +339,14 @@ private:
             if (auto it = overrides.find(om.name); it != overrides.end()) index[i] = it->second;
             else if (has_all) index[i] = all;
             else if (om.defined) index[i] = mesh_material(path + ":" + om.name, om.material);
-            else
-                throw Error(path + ":" + std::to_string(om.usemtl_line) + ": usemtl '" + om.name +
-                            "': no .mtl file defines it, and " + label +
-                            " gives no material for it (\"material\" or \"materials\")");
+            else {
+                // As other tools load such a file: grey, with a warning.
+                scene_.warnings.push_back(path + ":" + std::to_string(om.usemtl_line) + ": usemtl '" + om.name +
+                                          "': no .mtl file defines it, and " + label +
+                                          " gives no material for it (\"material\" or \"materials\"); it is the "
+                                          "default grey");
+                index[i] = mesh_material(path + ":(default)", diffuse(glm::vec3(0.8f)));
+            }
         }
         std::vector<std::uint32_t> tri_mat(mesh.triangle_count());
         bool needs_default = false;
@@ -464,10 +468,14 @@ Scene obj_scene(const std::string& file, const LoadOptions& options) {
     std::vector<std::uint32_t> index(mesh.materials.size());
     for (std::size_t i = 0; i < mesh.materials.size(); ++i) {
         const ObjMaterial& om = mesh.materials[i];
-        if (!om.defined)
-            throw Error(file + ":" + std::to_string(om.usemtl_line) + ": usemtl '" + om.name +
-                        "': no .mtl file defines it");
-        index[i] = s.add_material(om.name, om.material);
+        if (om.defined) {
+            index[i] = s.add_material(om.name, om.material);
+            continue;
+        }
+        // As Blender and assimp load such a file: grey, with a warning.
+        s.warnings.push_back(file + ":" + std::to_string(om.usemtl_line) + ": usemtl '" + om.name +
+                             "': no .mtl file defines it; it is the default grey");
+        index[i] = s.add_material(om.name, diffuse(glm::vec3(0.8f)));
     }
     std::vector<std::uint32_t> tri_mat(mesh.triangle_count());
     std::optional<std::uint32_t> grey;
@@ -485,23 +493,7 @@ Scene obj_scene(const std::string& file, const LoadOptions& options) {
     builder.finish();
     if (s.triangle_count() == 0) throw Error(file + ": every triangle is degenerate (an empty scene)");
 
-    bool lit = false;
-    for (auto m : s.triangle_material) lit = lit || emits(s.materials[m]);
-    if (!lit) s.environment.color = glm::vec3(1);
-
-    // Frame the bounding sphere in a 40 degree view from -z, a little above.
-    glm::vec3 lo(INFINITY), hi(-INFINITY);
-    for (const auto& v : s.vertices) {
-        lo = glm::min(lo, v);
-        hi = glm::max(hi, v);
-    }
-    const glm::vec3 centre = (lo + hi) * 0.5f;
-    const float radius = std::max(0.5f * glm::length(hi - lo), 1e-6f);
-    s.camera.vfov_degrees = 40;
-    s.camera.width = 640;
-    s.camera.height = 480;
-    s.camera.target = centre;
-    s.camera.eye = centre + glm::normalize(glm::vec3(0, 0.25f, -1)) * (radius / std::sin(glm::radians(18.0f)));
+    present_bare_mesh(s, options.presentation);
     return s;
 }
 
