@@ -1,4 +1,5 @@
 #include <cctype>
+#include <csignal>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +10,7 @@
 
 #include "cl/context.hpp"
 #include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
 #include "cli/scene_overrides.hpp"
@@ -42,7 +44,7 @@ struct RenderOptions {
     float exposure = 0;
     std::string tonemap = "clamp";
     std::optional<std::string> camera, env;
-    bool no_ground = false;
+    bool no_ground = false, no_partial = false;
 };
 
 bool is_bare_mesh(const std::string& spec) {
@@ -119,19 +121,25 @@ int run_render(const RenderOptions& o) {
                      renderer.compiled_from_cache() ? "loaded from cache" : "compiled", renderer.compile_seconds());
 
     Progress progress(spp, o.time_limit, !o.quiet);
+    // From here Ctrl-C or SIGTERM stops after the current pass (about a second
+    // at most) and the samples so far are written, unless --no-partial.
+    InterruptGuard interrupt;
     const auto t0 = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     double seconds_per_sample = 0;  // measured on the way
     for (;;) {
         const std::uint64_t done = renderer.stats().samples_per_pixel;
+        if (InterruptGuard::requested()) break;
         if (spp && done >= spp) break;
         if (o.time_limit > 0 && elapsed() >= o.time_limit) break;
         // One sample per step when a time limit is set, so the limit is kept closely;
         // otherwise steps of up to 1/20 of the total, for a smooth progress bar,
         // and of about a second at most, so that progress is reported often.
         std::uint64_t step = o.time_limit > 0 ? 1 : std::max<std::uint64_t>(1, spp / 20);
-        if (seconds_per_sample > 0)
-            step = std::min(step, std::max<std::uint64_t>(1, std::uint64_t(1.0 / seconds_per_sample)));
+        // The first pass is one sample: it measures how long one takes.
+        step = seconds_per_sample > 0
+                   ? std::min(step, std::max<std::uint64_t>(1, std::uint64_t(1.0 / seconds_per_sample)))
+                   : 1;
         if (spp) step = std::min(step, spp - done);
         if (done + step > kMaxSamplesPerPixel) break;
         const double before = elapsed();
@@ -142,6 +150,18 @@ int run_render(const RenderOptions& o) {
     }
     progress.finish();
     const double wall = elapsed();
+    const int signal = InterruptGuard::requested();
+    // The shell's convention for a program ended by a signal: 128 + its number.
+    const int exit_status = signal ? 128 + signal : 0;
+    if (signal && (o.no_partial || renderer.stats().samples_per_pixel == 0)) {
+        std::fprintf(stderr, "clpath: interrupted (%s) after %llu samples per pixel; nothing written%s\n",
+                     signal == SIGINT ? "SIGINT" : "SIGTERM", (unsigned long long)renderer.stats().samples_per_pixel,
+                     o.no_partial ? " (--no-partial)" : "");
+        return exit_status;
+    }
+    if (signal && !o.quiet)
+        std::fprintf(stderr, "clpath: interrupted (%s): writing the image of the %llu samples per pixel so far\n",
+                     signal == SIGINT ? "SIGINT" : "SIGTERM", (unsigned long long)renderer.stats().samples_per_pixel);
     RenderedImage image = renderer.resolve();
     // PNG gets the display transform; EXR and PFM keep the linear radiance.
     if (!display.is_identity()) image.srgb8 = display_srgb8(image.linear, display);
@@ -154,15 +174,15 @@ int run_render(const RenderOptions& o) {
     const double samples = double(st.samples_per_pixel) * scene.camera.width * scene.camera.height;
     std::printf(
         "summary: device=\"%s\" integrator=%s triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f spp=%llu "
-        "render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s\n",
+        "render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s interrupted=%d\n",
         device.name.c_str(), integrator_name(settings.integrator), renderer.triangle_count(), renderer.bvh_stats().build_ms, renderer.bvh_stats().node_count,
         renderer.bvh_stats().sah_cost, (unsigned long long)st.samples_per_pixel, wall, samples / wall * 1e-6,
         double(st.rays) / wall * 1e-6, (unsigned long long)st.rays, (unsigned long long)st.nonfinite,
-        accel_name(settings.accel));
+        accel_name(settings.accel), signal ? 1 : 0);
     if (st.nonfinite)
         std::fprintf(stderr, "clpath: warning: %llu samples were NaN or infinite and were dropped\n",
                      (unsigned long long)st.nonfinite);
-    return 0;
+    return exit_status;
 }
 
 }  // namespace
@@ -227,6 +247,9 @@ Command add_render_command(CLI::App& app) {
                     "renderer's; a baseline)")
         ->check(CLI::IsMember(accel_names()))
         ->capture_default_str();
+    cmd->add_flag("--no-partial", o->no_partial,
+                  "On Ctrl-C or SIGTERM write nothing (default: write the image of the samples so far; the summary "
+                  "line then says interrupted=1, and the exit status is 128 + the signal's number)");
     cmd->add_flag("--quiet,-q", o->quiet, "Print only the summary line");
     return [o] { return run_render(*o); };
 }

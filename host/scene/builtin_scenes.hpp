@@ -8,7 +8,7 @@
 
 namespace clpath {
 
-// The thesis renderer's Cornell box (shared/docs/thesis-scene.md), with every
+// The thesis renderer's Cornell box (docs/scene-format.md, cornell-thesis), with every
 // surface diffuse: the default scene.
 Scene cornell_thesis_scene();
 

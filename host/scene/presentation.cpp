@@ -35,7 +35,7 @@ float framing_distance(const Bounds& b, glm::vec3 d, float vfov_deg, float aspec
     const glm::vec3 f = -d;
     const glm::vec3 r = glm::normalize(glm::cross(f, glm::vec3(0, 1, 0)));
     const glm::vec3 u = glm::cross(r, f);
-    const float margin = 0.9f;  // the box fills at most 90 % of the frame
+    const float margin = 0.8f;  // the box fills at most 80 % of the frame: room for ground and shadow
     const float tan_v = std::tan(glm::radians(vfov_deg) * 0.5f) * margin, tan_h = tan_v * aspect;
     const glm::vec3 c0 = b.centre();
     float dist = 0;

@@ -61,7 +61,7 @@ clpath_usage_test(bench_convergence_time_cap_nan RC 2 ARGS bench convergence cor
                   OUTPUT "^clpath: error: --time-cap: 'nan' is not a finite number")
 
 # --- devices: by type, and the environment ------------------------------------------------
-clpath_usage_test(device_cpu RC 0 ARGS render ${SMALL} --device cpu -o ${USAGE_OUT}/cpu.pfm OUTPUT "summary: .*nonfinite=0")
+clpath_usage_test(device_cpu RC 0 ARGS render ${SMALL} --device cpu -o ${USAGE_OUT}/cpu.pfm OUTPUT "summary: .*nonfinite=0 accel=bvh interrupted=0")
 clpath_usage_test(device_cpu_from_env RC 0 ENV CLPATH_DEVICE=CPU ARGS render ${SMALL} -o ${USAGE_OUT}/cpu-env.pfm
                   OUTPUT "summary: ")
 # The test machines have no GPU; where one exists, the test says nothing.
@@ -128,8 +128,34 @@ clpath_usage_test(export_refuses_mirror RC 1 ARGS export ${CLI_DATA}/mirror.json
 
 # --- real OBJ files load as other tools load them ------------------------------------------
 clpath_usage_test(obj_missing_mtl_warns RC 0 ARGS render ${CLI_DATA}/missing-mtl.obj ${SMALL} -o ${USAGE_OUT}/mtl.pfm
-                  OUTPUT "warning: .*missing-mtl\\.obj:2: mtllib 'not-here\\.mtl': .*no such file; the materials it would define are the default grey.*warning: .*missing-mtl\\.obj:6: usemtl 'paint': no \\.mtl file defines it; it is the default grey.*summary: ")
+                  OUTPUT "warning: .*missing-mtl\\.obj:2: mtllib 'not-here\\.mtl': .*no such file; the materials it would define are the default grey.*warning: .*missing-mtl\\.obj:6: usemtl 'paint': no \\.mtl file defines it; it is the default grey")
 clpath_usage_test(obj_unused_channel_warns RC 0 ARGS render ${CLI_DATA}/glass-ni0.obj ${SMALL} -o ${USAGE_OUT}/ni0.pfm
                   OUTPUT "warning: .*glass-ni0\\.mtl: material 'plastic': Ni 0\\.0+ is out of range .*; the material does not use it, so it is ignored")
 clpath_usage_test(obj_mtl_bad_number RC 1 ARGS render ${CLI_DATA}/bad-ns.obj ${SMALL} -o ${USAGE_OUT}/ns.pfm
                   OUTPUT "^clpath: error: .*bad-ns\\.mtl:3: Ns: 'abc' is not a number" FORBID ${USAGE_OUT}/ns.pfm)
+
+# --- interrupting a render: SIGINT or SIGTERM writes the samples so far --------------------
+# (The output checked is stdout, then stderr.) timeout(1) sends the signal after a few seconds, into a render far too long to
+# finish; --preserve-status passes clpath's own exit status through.
+find_program(CLPATH_TIMEOUT timeout)
+function(clpath_interrupt_test name signal rc)
+    cmake_parse_arguments(T "" "OUTPUT;FORBID;MAKES" "ARGS" ${ARGN})
+    add_test(NAME cli.usage.${name}
+             COMMAND ${CMAKE_COMMAND}
+                     "-DCMD=${CLPATH_TIMEOUT};--preserve-status;-s;${signal};8;$<TARGET_FILE:clpath>;${T_ARGS}"
+                     -DEXPECT_FAIL=1 -DEXPECT_RC=${rc} "-DEXPECT_OUTPUT=${T_OUTPUT}" -DFORBID_FILE=${T_FORBID}
+                     -DEXPECT_FILE=${T_MAKES} -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/expect.cmake)
+    set_tests_properties(cli.usage.${name} PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 120)
+endfunction()
+if(CLPATH_TIMEOUT)
+    set(LONG --spp 4000000000 --width 16 --height 12)
+    file(REMOVE ${USAGE_OUT}/int.pfm ${USAGE_OUT}/term.pfm ${USAGE_OUT}/nopartial.pfm)
+    clpath_interrupt_test(sigint_writes_partial INT 130 ARGS render ${LONG} -o ${USAGE_OUT}/int.pfm
+                          MAKES ${USAGE_OUT}/int.pfm
+                          OUTPUT "summary: .*interrupted=1.*interrupted \\(SIGINT\\): writing the image of the [0-9]+ samples per pixel so far.*wrote .*int\\.pfm")
+    clpath_interrupt_test(sigterm_writes_partial TERM 143 ARGS render ${LONG} -o ${USAGE_OUT}/term.pfm
+                          MAKES ${USAGE_OUT}/term.pfm OUTPUT "summary: .*interrupted=1.*interrupted \\(SIGTERM\\): writing the image")
+    clpath_interrupt_test(no_partial_writes_nothing INT 130 ARGS render ${LONG} --no-partial -o ${USAGE_OUT}/nopartial.pfm
+                          FORBID ${USAGE_OUT}/nopartial.pfm
+                          OUTPUT "interrupted \\(SIGINT\\) after [0-9]+ samples per pixel; nothing written \\(--no-partial\\)")
+endif()
