@@ -32,8 +32,12 @@ void Progress::print_line(std::uint64_t spp, double elapsed) {
     const double eta = f > 0 ? elapsed * (1 - f) / f : 0;
     last_tenth_ = int(f * 10);
     last_line_ = elapsed;
-    std::fprintf(stderr, "progress: %3d%%  %llu spp  %.1f s elapsed  ETA %.1f s\n", int(f * 100),
-                 (unsigned long long)spp, elapsed, eta);
+    if (f > 0)
+        std::fprintf(stderr, "progress: %3d%%  %llu spp  %.1f s elapsed  ETA %.1f s\n", int(f * 100),
+                     (unsigned long long)spp, elapsed, eta);
+    else  // nothing done yet to estimate from
+        std::fprintf(stderr, "progress:   0%%  %llu spp  %.1f s elapsed  ETA not known yet\n", (unsigned long long)spp,
+                     elapsed);
     std::fflush(stderr);
 }
 
