@@ -1,5 +1,6 @@
 #include "scene/obj_mesh.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -398,6 +399,7 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
     const std::size_t nv = attrib.vertices.size() / 3, nn = attrib.normals.size() / 3;
     const bool with_normals = nn > 0;
     std::vector<glm::vec3> polygon;
+    std::vector<std::array<std::size_t, 3>> cut;
     for (const auto& shape : shapes) {
         const auto& m = shape.mesh;
         std::size_t first = 0;
@@ -416,7 +418,14 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
             };
             polygon.clear();
             for (std::size_t c = 0; c < corners; ++c) polygon.push_back(corner_position(c));
-            for (const auto& tri : triangulate_polygon(polygon)) {
+            // Triangles, nearly every face of most files, skip the polygon cutter.
+            static const std::vector<std::array<std::size_t, 3>> kTriangle{{0, 1, 2}};
+            const std::vector<std::array<std::size_t, 3>>* tris = &kTriangle;
+            if (corners != 3) {
+                cut = triangulate_polygon(polygon);
+                tris = &cut;
+            }
+            for (const auto& tri : *tris) {
                 for (std::size_t c : tri) {
                     const tinyobj::index_t idx = m.indices[first + c];
                     mesh.vertices.push_back(polygon[c]);
