@@ -1,4 +1,8 @@
 /* The film: a running sum per pixel, and the resolve that turns it into an image. */
+#ifndef CLP_FILM_CL
+#define CLP_FILM_CL
+
+#include "common.h"
 
 /* Kahan (1965) compensated addition: the error of each float addition is kept
  * in comp and fed back, so the sum of a million samples is as exact as one add. */
@@ -34,3 +38,5 @@ kernel void film_resolve(global const AccumPixel* accum, uint count, float inv_s
     srgb[i] = (uchar4)((uchar)(srgb_encode(c.x) * 255.0f + 0.5f), (uchar)(srgb_encode(c.y) * 255.0f + 0.5f),
                        (uchar)(srgb_encode(c.z) * 255.0f + 0.5f), (uchar)255);
 }
+
+#endif

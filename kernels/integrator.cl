@@ -3,15 +3,21 @@
  * not depend on how the host splits the work into launches). The program is
  * compiled for one integrator (CLP_INTEGRATOR) and one maximum depth
  * (CLP_MAX_DEPTH); see host/render/kernel_features.cpp. */
+#ifndef CLP_INTEGRATOR_CL
+#define CLP_INTEGRATOR_CL
 
-#ifndef CLP_INTEGRATOR
-#define CLP_INTEGRATOR CLP_INTEGRATOR_PATH
-#endif
-#ifndef CLP_MAX_DEPTH
-#define CLP_MAX_DEPTH 16u
-#endif
-#ifndef CLP_TILE
-#define CLP_TILE 8 /* pixels are walked in 8x8 tiles: neighbouring work-items trace neighbouring rays */
+#include "common.h"
+#include "rng.cl"
+#include "sampling.cl"
+#include "camera.cl"
+#include "traverse.cl"
+#include "materials.cl"
+#include "lights.cl"
+#include "film.cl"
+
+/* Both come from the host's settings, never from a default here. */
+#if !defined(CLP_INTEGRATOR) || !defined(CLP_MAX_DEPTH)
+#error "build with -DCLP_INTEGRATOR and -DCLP_MAX_DEPTH (host/render/kernel_features.cpp build_options)"
 #endif
 #define CLP_HEATMAP_MAX 128.0f /* nodes visited that map to the top of the heat map's colour ramp */
 
@@ -272,3 +278,5 @@ kernel void render_paths(global const BvhNode* nodes, global const TriVerts* tri
         if (group_nonfinite) atomic_add(&counters->nonfinite, group_nonfinite);
     }
 }
+
+#endif

@@ -5,6 +5,10 @@
  *    Ize's (2013) conservative widening so rounding never loses a box;
  *  - secondary-ray origins: offset by the hit point's rounding-error bound
  *    (Pharr, Jakob and Humphreys, PBR 4th ed., 6.8), which works at any scale. */
+#ifndef CLP_INTERSECT_CL
+#define CLP_INTERSECT_CL
+
+#include "common.h"
 
 /* gamma(n) = n eps / (1 - n eps): the relative error bound of n roundings (PBR 6.8.1). */
 #define CLP_GAMMA(n) (((float)(n) * 0x1.0p-24f) / (1.0f - (float)(n) * 0x1.0p-24f))
@@ -187,3 +191,5 @@ inline float3 offset_ray_origin(float3 p, float3 err, float3 n, float3 w) {
     return (float3)(next_float_away(po.x, offset.x), next_float_away(po.y, offset.y),
                     next_float_away(po.z, offset.z));
 }
+
+#endif

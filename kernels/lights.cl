@@ -3,6 +3,12 @@
  * proportion to power through an alias table built on the host. Kinds a scene
  * does not have are compiled out (CLP_HAS_TRIANGLE_LIGHTS, CLP_HAS_DELTA_LIGHTS,
  * CLP_HAS_ENV, CLP_HAS_ENV_MAP). */
+#ifndef CLP_LIGHTS_CL
+#define CLP_LIGHTS_CL
+
+#include "common.h"
+#include "sampling.cl"
+#include "intersect.cl"
 
 /* ---- the environment ---------------------------------------------------- */
 /* Equirectangular: u = 0.5 + atan2(x, -z) / 2pi across, v = acos(y) / pi down
@@ -12,8 +18,7 @@
 
 typedef struct {
     global const float4* pixels;
-    /* marginal CDF over rows (height + 1 values), then per row the conditional
-     * CDF over columns (width + 1 values each), from luminance x sin(theta). */
+    /* luminance x sin(theta), in the layout of CLP_ENV_ROW_CDF (shared_structs.h) */
     global const float* cdf;
 } EnvMap;
 
@@ -58,12 +63,12 @@ inline uint cdf_find(global const float* cdf, uint n, float u) {
 /* Solid-angle pdf of env_sample_direction choosing d. */
 inline float env_pdf(constant const FrameParams* fp, const EnvMap* env, float3 d) {
 #ifdef CLP_HAS_ENV_MAP
-    if (fp->env_width && env->cdf[0] >= 0.0f) {
+    if (fp->env_width && CLP_ENV_IS_SAMPLED(env->cdf[0])) {
         uint w = fp->env_width, h = fp->env_height;
         float st;
         uint i = env_texel(fp, d, &st), x = i % w, y = i / w;
         if (st <= 0.0f) return 0.0f;
-        global const float* row = env->cdf + (h + 1) + y * (w + 1);
+        global const float* row = env->cdf + CLP_ENV_ROW_CDF(w, h, y);
         float p_uv = (env->cdf[y + 1] - env->cdf[y]) * (row[x + 1] - row[x]) * (float)w * (float)h;
         return p_uv / (2.0f * CLP_PI * CLP_PI * st);
     }
@@ -73,14 +78,14 @@ inline float env_pdf(constant const FrameParams* fp, const EnvMap* env, float3 d
 
 /* A direction towards the environment: by the image's luminance (pbrt's
  * piecewise-constant 2D distribution) or, for a constant colour or when not
- * importance sampled (an empty cdf: cdf[0] < 0), uniformly on the sphere. */
+ * importance sampled (CLP_ENV_NOT_SAMPLED), uniformly on the sphere. */
 inline float3 env_sample_direction(constant const FrameParams* fp, const EnvMap* env, float u1, float u2) {
 #ifdef CLP_HAS_ENV_MAP
-    if (fp->env_width && env->cdf[0] >= 0.0f) {
+    if (fp->env_width && CLP_ENV_IS_SAMPLED(env->cdf[0])) {
         uint w = fp->env_width, h = fp->env_height;
         uint y = cdf_find(env->cdf, h, u1);
         float dv = (u1 - env->cdf[y]) / fmax(env->cdf[y + 1] - env->cdf[y], 1e-30f);
-        global const float* row = env->cdf + (h + 1) + y * (w + 1);
+        global const float* row = env->cdf + CLP_ENV_ROW_CDF(w, h, y);
         uint x = cdf_find(row, w, u2);
         float du = (u2 - row[x]) / fmax(row[x + 1] - row[x], 1e-30f);
         float u = ((float)x + clamp(du, 0.0f, 1.0f)) / (float)w;
@@ -125,10 +130,8 @@ typedef struct {
  *   Emulated in float32 over random points, its samples failed a chi-square
  *   test against 1/omega below a ratio of 0.021 and passed above it;
  *   tests/kernels/lights_test.cpp checks both sides of the rule.
- * Sampling and pdf use the same rule, so MIS stays exact. */
-#define CLP_MIN_SPHERICAL_AREA 3e-4f
-#define CLP_MAX_SPHERICAL_AREA 6.22f
-#define CLP_MIN_SPHERICAL_ELEVATION 0.1f
+ * Sampling and pdf use the same rule, so MIS stays exact. The thresholds
+ * (CLP_*_SPHERICAL_*) are in shared_structs.h, where the host's tests read them. */
 
 /* The solid angle of light triangle (a, b, c) at p when it is sampled by solid
  * angle, else 0. */
@@ -268,3 +271,5 @@ inline float power_heuristic(float pdf_a, float pdf_b) {
     float r = pdf_b / pdf_a; /* as a ratio: squares of large pdfs would overflow */
     return 1.0f / (1.0f + r * r);
 }
+
+#endif

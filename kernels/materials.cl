@@ -6,6 +6,11 @@
  * Directions point away from the surface. BSDFs work in a local frame whose z
  * axis is the shading normal; `ng` is the geometric normal of the triangle's
  * winding (its front side). */
+#ifndef CLP_MATERIALS_CL
+#define CLP_MATERIALS_CL
+
+#include "common.h"
+#include "sampling.cl"
 
 /* ---- emission ---------------------------------------------------------- */
 
@@ -342,3 +347,5 @@ inline int material_sample(global const Material* m, float3 ng, float3 ns, float
 
 /* What the albedo debug view shows. */
 inline float3 material_albedo(global const Material* m) { return load3g(m->albedo); }
+
+#endif

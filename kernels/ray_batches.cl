@@ -1,11 +1,16 @@
 /* The ray-batch benchmark (clpath bench rays, host/bench/ray_batches.cpp):
  * kernels that make the rays (not timed) and kernels that trace a batch
  * (timed), one ray per work-item, through the same traverse_bvh() the
- * integrator uses (the BVH, or the flat list with -DCLP_ACCEL_FLAT).
- * Files before this one: rng.cl, sampling.cl, camera.cl, intersect.cl, traverse.cl. */
+ * integrator uses (the BVH, or the flat list with -DCLP_ACCEL_FLAT). */
+#ifndef CLP_RAY_BATCHES_CL
+#define CLP_RAY_BATCHES_CL
 
-#define CLP_BATCH_TILE 4    /* pixels are ordered in 4x4-pixel tiles */
-#define CLP_BATCH_GRID 4    /* 4x4 samples per pixel, at the centres of a sub-pixel grid */
+#include "common.h"
+#include "rng.cl"
+#include "sampling.cl"
+#include "camera.cl"
+#include "intersect.cl"
+#include "traverse.cl"
 
 /* Primary ray i: tile, then pixel in the tile, then sample in the pixel, so
  * neighbouring work-items trace neighbouring rays. width and height are
@@ -31,7 +36,7 @@ kernel void batch_primary_rays(constant const CameraData* cam, global BatchRay* 
 
 /* The surface point a primary hit found, with its rounding-error bound and
  * its geometric normal turned towards the ray's side. */
-inline float3 batch_hit_point(global const TriVerts* tris, const BatchRay* r, BatchHit h, float3* err, float3* n) {
+inline float3 batch_hit_point(global const TriVerts* tris, const BatchRay* r, Hit h, float3* err, float3* n) {
     global const TriVerts* tv = &tris[h.tri];
     float3 v0 = load3g(tv->v0), v1 = load3g(tv->v1), v2 = load3g(tv->v2);
     float3 ng = normalize(cross(v1 - v0, v2 - v0));
@@ -44,7 +49,7 @@ inline float3 batch_hit_point(global const TriVerts* tris, const BatchRay* r, Ba
  * Diffuse: cosine-distributed about the normal on the ray's side, unbounded.
  * Origins are offset as the integrator's (offset_ray_origin). */
 kernel void batch_secondary_rays(global const TriVerts* tris, global const BatchRay* primary,
-                                 global const BatchHit* hits, global const uint* src, uint count, float lx, float ly,
+                                 global const Hit* hits, global const uint* src, uint count, float lx, float ly,
                                  float lz, uint diffuse, uint seed, global BatchRay* out) {
     uint i = get_global_id(0);
     if (i >= count) return;
@@ -75,18 +80,12 @@ kernel void batch_secondary_rays(global const TriVerts* tris, global const Batch
 
 /* The timed kernels: closest hit, and any hit (shadow rays). */
 kernel void batch_trace_closest(global const BvhNode* nodes, global const TriVerts* tris,
-                                global const BatchRay* rays, global BatchHit* hits, uint count) {
+                                global const BatchRay* rays, global Hit* hits, uint count) {
     uint i = get_global_id(0);
     if (i >= count) return;
     global const BatchRay* r = &rays[i];
     RayPre rp = ray_prepare(load3g(r->o), load3g(r->d));
-    Hit h = traverse_bvh(nodes, tris, &rp, r->tmax, 0, 0);
-    BatchHit out;
-    out.t = h.t;
-    out.b1 = h.b1;
-    out.b2 = h.b2;
-    out.tri = h.tri;
-    hits[i] = out;
+    hits[i] = traverse_bvh(nodes, tris, &rp, r->tmax, 0, 0);
 }
 
 kernel void batch_trace_any(global const BvhNode* nodes, global const TriVerts* tris, global const BatchRay* rays,
@@ -97,3 +96,5 @@ kernel void batch_trace_any(global const BvhNode* nodes, global const TriVerts* 
     RayPre rp = ray_prepare(load3g(r->o), load3g(r->d));
     occluder[i] = traverse_bvh(nodes, tris, &rp, r->tmax, 1, 0).tri;
 }
+
+#endif

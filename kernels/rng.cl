@@ -2,6 +2,10 @@
  * (seed, pixel, sample index). Hashing rather than offsetting makes streams of
  * neighbouring pixels and successive samples independent; a stream's state is
  * never zero (xorshift's one fixed point). */
+#ifndef CLP_RNG_CL
+#define CLP_RNG_CL
+
+#include "common.h"
 
 /* "lowbias32" from C. Wellons' hash prospector (2018): a bijective 32-bit mixer
  * with very low avalanche bias; bijective, so distinct inputs never collide. */
@@ -37,3 +41,5 @@ inline uint rng_next_u32(Rng* r) {
 
 /* Uniform in [0, 1): the top 24 bits, so every value is exactly representable. */
 inline float rng_next(Rng* r) { return (float)(rng_next_u32(r) >> 8) * 0x1.0p-24f; }
+
+#endif

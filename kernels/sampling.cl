@@ -1,4 +1,8 @@
 /* Sampling directions and building frames. */
+#ifndef CLP_SAMPLING_CL
+#define CLP_SAMPLING_CL
+
+#include "common.h"
 
 #define CLP_PI 3.14159265358979323846f
 #define CLP_INV_PI 0.31830988618379067154f
@@ -106,3 +110,5 @@ inline float3 sample_spherical_triangle(float3 a, float3 b, float3 c, float area
     float z = 1.0f - u2 * (1.0f - dot(c_hat, b));
     return z * b + sqrt(fmax(0.0f, 1.0f - z * z)) * orthogonal_part(c_hat, b);
 }
+
+#endif

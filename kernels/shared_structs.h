@@ -52,6 +52,37 @@ typedef std::uint32_t uint;
 #define CLP_LIGHTF_TWO_SIDED 1u  /* a triangle light that emits from both faces */
 #define CLP_NO_LIGHT 0xffffffffu
 
+/* The path kernel walks pixels in CLP_TILE x CLP_TILE tiles, so that
+ * neighbouring work-items trace neighbouring rays; the host launches whole
+ * tiles (the pixel count rounded up to them). */
+#define CLP_TILE 8u
+
+/* Ray batches (clpath bench rays): pixels in CLP_BATCH_TILE x CLP_BATCH_TILE
+ * tiles (width and height must be multiples of it), each with a
+ * CLP_BATCH_GRID x CLP_BATCH_GRID grid of samples at its cells' centres. */
+#define CLP_BATCH_TILE 4u
+#define CLP_BATCH_GRID 4u
+#define CLP_BATCH_SAMPLES (CLP_BATCH_GRID * CLP_BATCH_GRID)
+
+/* The environment image's sampling distribution (PBR 4th ed., A.5.6) is one
+ * float array: the marginal CDF over the h rows (h + 1 values), then each
+ * row's conditional CDF over its w columns (w + 1 values each). An array
+ * whose first value is CLP_ENV_NOT_SAMPLED (a negative number, which no CDF
+ * starts with) means: sample the sphere uniformly instead. */
+#define CLP_ENV_NOT_SAMPLED (-1.0f)
+#define CLP_ENV_IS_SAMPLED(first_value) ((first_value) >= 0.0f)
+#define CLP_ENV_ROW_CDF(w, h, y) ((h) + 1u + (y) * ((w) + 1u)) /* index of row y's conditional CDF */
+#define CLP_ENV_CDF_SIZE(w, h) CLP_ENV_ROW_CDF(w, h, h)
+
+/* Where a triangle light is sampled by solid angle (Arvo 1995) rather than
+ * by area (kernels/lights.cl, triangle_sampled_solid_angle, says why): when
+ * its solid angle lies in [MIN_AREA, MAX_AREA] (pbrt-v4's Triangle::Sample
+ * thresholds) and the shading point is at least MIN_ELEVATION times its
+ * distance to the nearest vertex off the triangle's plane. */
+#define CLP_MIN_SPHERICAL_AREA 3e-4f
+#define CLP_MAX_SPHERICAL_AREA 6.22f
+#define CLP_MIN_SPHERICAL_ELEVATION 0.1f
+
 /* FrameParams.scene_flags. */
 #define CLP_SCENE_NORMALS 1u /* the normals buffer holds per-vertex shading normals */
 
@@ -193,13 +224,14 @@ typedef struct {
     uint src; /* the primary ray a secondary ray starts from; for primaries, its own index */
 } BatchRay;
 
-/* What a batch kernel found: tri indexes the uploaded (leaf-ordered)
- * triangles, -1 for a miss; any-hit batches fill tri only. */
+/* A ray's hit, as traversal returns it and the closest-hit batch kernel
+ * stores it: tri indexes the leaf-ordered triangles (TriVerts), -1 for a
+ * miss; b1 and b2 are the barycentric weights of v1 and v2. */
 typedef struct {
     float t;
     float b1, b2;
     int tri;
-} BatchHit;
+} Hit;
 
 CLP_STATIC_ASSERT(sizeof(BvhNode) == 64, bvh_node_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(TriVerts) == 48, tri_verts_is_48_bytes);
@@ -211,6 +243,6 @@ CLP_STATIC_ASSERT(sizeof(AliasEntry) == 16, alias_entry_is_16_bytes);
 CLP_STATIC_ASSERT(sizeof(Counters) == 16, counters_is_16_bytes);
 CLP_STATIC_ASSERT(sizeof(AccumPixel) == 32, accum_pixel_is_32_bytes);
 CLP_STATIC_ASSERT(sizeof(BatchRay) == 32, batch_ray_is_32_bytes);
-CLP_STATIC_ASSERT(sizeof(BatchHit) == 16, batch_hit_is_16_bytes);
+CLP_STATIC_ASSERT(sizeof(Hit) == 16, hit_is_16_bytes);
 
 #endif

@@ -6,12 +6,11 @@
  * BVH traversal: a stack of CLP_BVH_MAX_DEPTH entries (the builder guarantees
  * no deeper tree), nearest child first. Nodes hold both children's boxes
  * (Aila & Laine 2009), so each step tests two boxes from one 64-byte fetch. */
+#ifndef CLP_TRAVERSE_CL
+#define CLP_TRAVERSE_CL
 
-typedef struct {
-    float t;
-    float b1, b2; /* barycentric weights of v1 and v2 */
-    int tri;      /* index into the leaf-ordered triangles, -1 for a miss */
-} Hit;
+#include "common.h"
+#include "intersect.cl"
 
 inline int intersect_leaf(const RayPre* r, global const TriVerts* tris, uint first, uint count, Hit* hit) {
     int found = 0;
@@ -107,3 +106,5 @@ inline Hit traverse_bvh(global const BvhNode* nodes, global const TriVerts* tris
     return traverse_tree(nodes, tris, r, tmax, any_hit, visits);
 #endif
 }
+
+#endif

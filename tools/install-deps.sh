@@ -10,9 +10,11 @@ fi
 # libclang-rt-14-dev holds libFuzzer and the sanitizer runtimes for the fuzz tests;
 # clang only recommends it, and recommends are not installed here.
 # xauth: xvfb-run (the viewer tests) needs it; xvfb only recommends it.
+# oclgrind: a second OpenCL implementation, a simulator that checks every kernel
+# for out-of-bounds and uninitialised accesses and data races (tests/kernels/).
 packages="
     build-essential cmake pkg-config clang libclang-rt-14-dev
-    pocl-opencl-icd ocl-icd-opencl-dev opencl-headers clinfo
+    pocl-opencl-icd ocl-icd-opencl-dev opencl-headers clinfo oclgrind
     libglm-dev libglfw3-dev libopenimageio-dev openimageio-tools
     libtinyobjloader-dev nlohmann-json3-dev libcli11-dev libgtest-dev
     xvfb xauth libimgui-dev glmark2-data

@@ -14,7 +14,7 @@
 namespace clpath {
 namespace {
 
-constexpr std::size_t kSamplesPerPixel = 16;  // kernels/ray_batches.cl: a 4x4 grid
+constexpr std::size_t kSamplesPerPixel = CLP_BATCH_SAMPLES;
 
 // Indices of the rays checked: all, or `check` evenly spaced over the batch
 // (so every part of the image is represented).
@@ -54,14 +54,14 @@ std::string mismatch_report(std::size_t i, const BatchRay& r, std::int64_t dev_p
 }
 
 BatchAgreement check_closest(const Bvh& reference, const std::vector<TriVerts>& device_tris,
-                             const std::vector<BatchRay>& rays, const std::vector<BatchHit>& hits, std::size_t check) {
+                             const std::vector<BatchRay>& rays, const std::vector<Hit>& hits, std::size_t check) {
     const auto idx = checked_rays(rays.size(), check);
     std::vector<CpuHit> cpu(idx.size());
     parallel_for(idx.size(), [&](std::size_t k) { cpu[k] = cpu_closest_hit(reference, rays[idx[k]]); });
     BatchAgreement a;
     a.checked = idx.size();
     for (std::size_t k = 0; k < idx.size(); ++k) {
-        const BatchHit& h = hits[idx[k]];
+        const Hit& h = hits[idx[k]];
         const std::int64_t prim = h.tri < 0 ? -1 : std::int64_t(device_tris[std::size_t(h.tri)].prim);
         const CpuHit& c = cpu[k];
         const BatchRay& r = rays[idx[k]];
@@ -119,8 +119,7 @@ void finish_timing(BatchResult& b) {
 }  // namespace
 
 const std::vector<std::string>& ray_batch_kernel_files() {
-    static const std::vector<std::string> files = {"rng.cl",      "sampling.cl", "camera.cl",
-                                                   "intersect.cl", "traverse.cl", "ray_batches.cl"};
+    static const std::vector<std::string> files = {"ray_batches.cl"};
     return files;
 }
 
@@ -154,8 +153,10 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     auto say = [&](const std::string& s) {
         if (log) log(s);
     };
-    if (o.width <= 0 || o.height <= 0 || o.width % 4 || o.height % 4)
-        throw Error("ray batches: width and height must be positive multiples of 4 (rays come in 4x4-pixel tiles), got " +
+    constexpr int tile = int(CLP_BATCH_TILE);
+    if (o.width <= 0 || o.height <= 0 || o.width % tile || o.height % tile)
+        throw Error("ray batches: width and height must be positive multiples of " + std::to_string(tile) +
+                    " (rays come in " + std::to_string(tile) + "x" + std::to_string(tile) + "-pixel tiles), got " +
                     std::to_string(o.width) + "x" + std::to_string(o.height));
     if (o.launches < 1) throw Error("ray batches: at least one timed launch is needed");
     if (scene.triangle_count() == 0) throw Error("scene '" + scene.name + "' has no triangles");
@@ -190,9 +191,9 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     ctx.check_fits({{"acceleration nodes", structure.nodes.size() * sizeof(BvhNode)},
                     {"triangles", structure.triangles.size() * sizeof(TriVerts)},
                     {"primary rays", n * sizeof(BatchRay)},
-                    {"primary hits", n * sizeof(BatchHit)},
+                    {"primary hits", n * sizeof(Hit)},
                     {"secondary rays", n * sizeof(BatchRay)},
-                    {"secondary hits", n * sizeof(BatchHit)},
+                    {"secondary hits", n * sizeof(Hit)},
                     {"hit list", n * sizeof(std::uint32_t)}});
     Buffer nodes = ctx.buffer(structure.nodes.size() * sizeof(BvhNode), CL_MEM_READ_ONLY, "acceleration nodes",
                               structure.nodes.data());
@@ -200,9 +201,9 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
                              structure.triangles.data());
     Buffer cam_buf = ctx.buffer(sizeof cam, CL_MEM_READ_ONLY, "camera", &cam);
     Buffer primary = ctx.buffer(n * sizeof(BatchRay), CL_MEM_READ_WRITE, "primary rays");
-    Buffer primary_hits = ctx.buffer(n * sizeof(BatchHit), CL_MEM_READ_WRITE, "primary hits");
+    Buffer primary_hits = ctx.buffer(n * sizeof(Hit), CL_MEM_READ_WRITE, "primary hits");
     Buffer secondary = ctx.buffer(n * sizeof(BatchRay), CL_MEM_READ_WRITE, "secondary rays");
-    Buffer secondary_hits = ctx.buffer(n * sizeof(BatchHit), CL_MEM_READ_WRITE, "secondary hits");
+    Buffer secondary_hits = ctx.buffer(n * sizeof(Hit), CL_MEM_READ_WRITE, "secondary hits");
     Buffer src = ctx.buffer(n * sizeof(std::uint32_t), CL_MEM_READ_WRITE, "hit list");
 
     BuildResult built = build_program(ctx, program_source(ray_batch_kernel_files()), ray_batch_build_options(o.accel));
@@ -232,7 +233,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     say("primary: tracing " + std::to_string(n) + " rays");
     time_batch(prim, closest);
     std::vector<BatchRay> primary_rays(n);
-    std::vector<BatchHit> primary_result(n);
+    std::vector<Hit> primary_result(n);
     ctx.read(primary, primary_rays);
     ctx.read(primary_hits, primary_result);
     std::vector<std::uint32_t> hit_list;
@@ -277,7 +278,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
         say("diffuse: tracing " + std::to_string(m) + " rays");
         time_batch(diffuse, closest);
         std::vector<BatchRay> rays(m);
-        std::vector<BatchHit> hits(m);
+        std::vector<Hit> hits(m);
         ctx.read(secondary, rays);
         ctx.read(secondary_hits, hits);
         for (const auto& h : hits) diffuse.hits += h.tri >= 0;

@@ -1,8 +1,8 @@
 #pragma once
-// The ray-batch traversal benchmark (clpath bench rays; issue 6), made to be
-// comparable with published GPU traversal tests (tinybvh's, see ROADMAP.md):
-// width x height pixels x 16 samples on a 4x4 sub-pixel grid, rays ordered in
-// 4x4-pixel tiles; a batch of primary rays (closest hit), of shadow rays from
+// The ray-batch traversal benchmark (clpath bench rays), made to be
+// comparable with published GPU traversal tests (tinybvh's):
+// width x height pixels x CLP_BATCH_SAMPLES (16) samples on a 4x4 sub-pixel
+// grid, rays ordered in 4x4-pixel tiles (kernels/shared_structs.h); a batch of primary rays (closest hit), of shadow rays from
 // the primary hits to a point light (any hit) and of cosine-distributed
 // diffuse rays from the primary hits (closest hit). Each batch: one warm-up
 // and N timed launches, timed by OpenCL profiling events; every batch is
@@ -23,7 +23,7 @@
 namespace clpath {
 
 struct RayBenchOptions {
-    int width = 480, height = 320;  // multiples of 4
+    int width = 480, height = 320;  // multiples of CLP_BATCH_TILE
     int launches = 5;               // timed launches per batch, after one warm-up
     std::size_t workgroup = 64;     // work-items per group; 0: the driver chooses
     Accel accel = Accel::Bvh;
@@ -81,7 +81,7 @@ struct RayBenchResult {
     std::vector<BatchResult> batches;  // primary, shadow, diffuse
 };
 
-// The batch kernels' program: these files (program_source) with these options.
+// The batch kernels' program: these root files (program_source) with these options.
 const std::vector<std::string>& ray_batch_kernel_files();
 std::string ray_batch_build_options(Accel accel);
 

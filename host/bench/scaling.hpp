@@ -21,7 +21,7 @@ struct ScalingOptions {
     std::size_t min = 100, max = 10'000'000;
     bool bvh = true, flat = true;
     double time_cap_s = 60;           // flat: stop once the next size is predicted to take longer
-    int ray_width = 96, ray_height = 64;  // ray batches (x 16 samples)
+    int ray_width = 96, ray_height = 64;  // ray batches (x CLP_BATCH_SAMPLES)
     int launches = 3;
     std::size_t check = 4096;         // rays per batch checked on the CPU
     int path_width = 64, path_height = 48;

@@ -63,7 +63,7 @@ void Context::check_fits(const std::vector<std::pair<std::string, std::size_t>>&
         global_mem = std::min(global_mem, limit);
         limited = " (limited by CLPATH_DEVICE_MEMORY_LIMIT)";
     }
-    std::size_t total = allocated_;
+    std::size_t total = *allocated_;
     for (const auto& [what, bytes] : buffers) {
         if (bytes > max_alloc)
             throw Error(what + " needs " + mib(bytes) + ", more than " + device_.name +
@@ -81,8 +81,8 @@ Buffer Context::buffer(std::size_t bytes, cl_mem_flags flags, const std::string&
     cl_int err = CL_SUCCESS;
     cl_mem m = clCreateBuffer(ctx_, flags | (init ? CL_MEM_COPY_HOST_PTR : 0), bytes, const_cast<void*>(init), &err);
     cl_check(err, "allocating " + what + " (" + mib(bytes) + ") on " + device_.name);
-    allocated_ += bytes;
-    return Buffer(m, bytes);
+    *allocated_ += bytes;
+    return Buffer(m, bytes, allocated_);
 }
 
 void Context::write(const Buffer& b, const void* data, std::size_t bytes, std::size_t offset) {
@@ -93,6 +93,14 @@ void Context::write(const Buffer& b, const void* data, std::size_t bytes, std::s
 void Context::read(const Buffer& b, void* data, std::size_t bytes, std::size_t offset) {
     cl_check(clEnqueueReadBuffer(queue_, b.get(), CL_TRUE, offset, bytes, data, 0, nullptr, nullptr),
              "clEnqueueReadBuffer");
+}
+
+void Context::zero(const Buffer& b) {
+    const cl_uint word = 0;
+    const std::size_t pattern = b.bytes() % sizeof word == 0 ? sizeof word : 1;
+    cl_check(clEnqueueFillBuffer(queue_, b.get(), &word, pattern, 0, b.bytes(), 0, nullptr, nullptr),
+             "clEnqueueFillBuffer");
+    finish();
 }
 
 Kernel Context::kernel(cl_program program, const std::string& name) {

@@ -3,7 +3,9 @@
 // and every buffer made through it; each call is checked and errors carry names.
 #include <CL/cl.h>
 
+#include <atomic>
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,28 +15,49 @@
 
 namespace clpath {
 
-// Move-only owner of one cl_mem.
+// The bytes a Context has allocated and not yet freed. Shared with its buffers
+// (so a buffer that outlives its Context still gives back to a live counter),
+// atomic because a buffer may be freed on another thread than its Context's.
+using MemoryCounter = std::atomic<std::size_t>;
+
+// Move-only owner of one cl_mem. A buffer made by Context::buffer gives its
+// bytes back to that Context's counter when it is freed; one wrapping memory
+// the Context did not allocate (an OpenGL buffer) counts nothing.
 class Buffer {
 public:
     Buffer() = default;
     Buffer(cl_mem m, std::size_t bytes) : mem_(m), bytes_(bytes) {}
-    Buffer(Buffer&& o) noexcept : mem_(std::exchange(o.mem_, nullptr)), bytes_(std::exchange(o.bytes_, 0)) {}
+    Buffer(cl_mem m, std::size_t bytes, std::shared_ptr<MemoryCounter> counter)
+        : mem_(m), bytes_(bytes), counter_(std::move(counter)) {}
+    Buffer(Buffer&& o) noexcept
+        : mem_(std::exchange(o.mem_, nullptr)), bytes_(std::exchange(o.bytes_, 0)), counter_(std::move(o.counter_)) {}
     Buffer& operator=(Buffer&& o) noexcept {
-        std::swap(mem_, o.mem_);
-        std::swap(bytes_, o.bytes_);
+        if (this != &o) {
+            release();
+            mem_ = std::exchange(o.mem_, nullptr);
+            bytes_ = std::exchange(o.bytes_, 0);
+            counter_ = std::move(o.counter_);
+        }
         return *this;
     }
     Buffer(const Buffer&) = delete;
     Buffer& operator=(const Buffer&) = delete;
-    ~Buffer() {
-        if (mem_) clReleaseMemObject(mem_);
-    }
+    ~Buffer() { release(); }
     cl_mem get() const { return mem_; }
     std::size_t bytes() const { return bytes_; }
 
 private:
+    void release() noexcept {
+        if (mem_) clReleaseMemObject(mem_);
+        if (counter_) *counter_ -= bytes_;
+        mem_ = nullptr;
+        bytes_ = 0;
+        counter_.reset();
+    }
+
     cl_mem mem_ = nullptr;
     std::size_t bytes_ = 0;
+    std::shared_ptr<MemoryCounter> counter_;
 };
 
 // Move-only owner of one cl_kernel, with typed argument setting.
@@ -94,6 +117,8 @@ public:
 
     void write(const Buffer& b, const void* data, std::size_t bytes, std::size_t offset = 0);
     void read(const Buffer& b, void* data, std::size_t bytes, std::size_t offset = 0);
+    // Sets every byte of b to zero (blocking).
+    void zero(const Buffer& b);
     template <class T>
     void write(const Buffer& b, const std::vector<T>& v) { write(b, v.data(), v.size() * sizeof(T)); }
     template <class T>
@@ -107,13 +132,14 @@ public:
     cl_event launch(const Kernel& k, std::size_t global, std::size_t local = 0, bool want_event = false);
     void finish();
 
-    std::size_t allocated_bytes() const { return allocated_; }
+    // Bytes of the buffers made by this Context that are still alive.
+    std::size_t allocated_bytes() const { return *allocated_; }
 
 private:
     DeviceInfo device_;
     cl_context ctx_ = nullptr;
     cl_command_queue queue_ = nullptr;
-    std::size_t allocated_ = 0;
+    std::shared_ptr<MemoryCounter> allocated_ = std::make_shared<MemoryCounter>(0);
 };
 
 // Seconds a finished, profiled event spent executing; releases the event.

@@ -85,7 +85,6 @@ std::vector<DeviceInfo> list_devices() {
             d.platform_name = platform_string(p, CL_PLATFORM_NAME);
             d.version = device_string(id, CL_DEVICE_VERSION);
             d.driver = device_string(id, CL_DRIVER_VERSION);
-            d.c_version = device_string(id, CL_DEVICE_OPENCL_C_VERSION);
             auto type = device_value<cl_device_type>(id, CL_DEVICE_TYPE);
             d.is_gpu = type & CL_DEVICE_TYPE_GPU;
             d.is_cpu = type & CL_DEVICE_TYPE_CPU;

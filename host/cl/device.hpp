@@ -11,7 +11,7 @@ struct DeviceInfo {
     int index = -1;  // position in list_devices(): what --device accepts
     cl_platform_id platform = nullptr;
     cl_device_id device = nullptr;
-    std::string name, platform_name, version, driver, c_version;
+    std::string name, platform_name, version, driver;
     bool is_gpu = false, is_cpu = false;
     cl_ulong global_mem = 0, max_alloc = 0;
     cl_uint compute_units = 0;

@@ -1,10 +1,52 @@
 #include "cl/embedded_sources.hpp"
 
 #include <map>
+#include <regex>
+#include <set>
+#include <sstream>
 
 #include "util/error.hpp"
 
 namespace clpath {
+namespace {
+
+using ByName = std::map<std::string, const char*>;
+
+ByName index(const SourceTable& table) {
+    ByName m;
+    for (const auto& s : table) m.emplace(s.name, s.text);
+    return m;
+}
+
+struct Assembler {
+    ByName files;
+    std::set<std::string> taken;
+    std::string out;
+
+    void include(const std::string& name, const std::string& from) {
+        if (!taken.insert(name).second) return;
+        auto it = files.find(name);
+        if (it == files.end())
+            throw Error("internal: kernel source " + name + (from.empty() ? "" : " (included from " + from + ")") +
+                        " is not embedded");
+        static const std::regex quoted(R"re(^\s*#\s*include\s*"([^"]+)"\s*$)re");
+        std::istringstream in(it->second);
+        std::string line;
+        out += "#line 1 \"" + name + "\"\n";
+        for (int n = 1; std::getline(in, line); ++n) {
+            std::smatch m;
+            if (std::regex_match(line, m, quoted)) {
+                include(m[1].str(), name + ":" + std::to_string(n));
+                out += "#line " + std::to_string(n + 1) + " \"" + name + "\"\n";
+            } else {
+                out += line;
+                out += '\n';
+            }
+        }
+    }
+};
+
+}  // namespace
 
 const std::string& embedded_source(const std::string& name) {
     static const std::map<std::string, std::string> by_name = [] {
@@ -17,20 +59,18 @@ const std::string& embedded_source(const std::string& name) {
     return it->second;
 }
 
-std::string program_source(const std::vector<std::string>& files) {
-    std::string src = embedded_source("shared_structs.h");
-    for (const auto& f : files) {
-        // #line keeps compiler messages pointing at the right file and line.
-        src += "\n#line 1 \"" + f + "\"\n";
-        src += embedded_source(f);
-    }
-    return src;
+std::string program_source(const std::vector<std::string>& roots, const SourceTable& extra) {
+    Assembler a;
+    a.files = index(embedded_sources());
+    for (const auto& s : extra)
+        if (!a.files.emplace(s.name, s.text).second)
+            throw Error(std::string("internal: two embedded kernel sources are named ") + s.name);
+    for (const auto& r : roots) a.include(r, "");
+    return a.out;
 }
 
 const std::vector<std::string>& renderer_kernel_files() {
-    static const std::vector<std::string> files = {
-        "rng.cl", "sampling.cl", "camera.cl", "intersect.cl", "traverse.cl",
-        "materials.cl", "lights.cl", "film.cl", "integrator.cl"};
+    static const std::vector<std::string> files = {"integrator.cl"};
     return files;
 }
 

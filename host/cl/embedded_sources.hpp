@@ -1,6 +1,7 @@
 #pragma once
 // Kernel sources compiled into the binary by cmake/embed_sources.cmake, so that
-// clpath runs from any directory.
+// clpath runs from any directory, and the one function that assembles them
+// into a program.
 #include <string>
 #include <vector>
 
@@ -10,17 +11,27 @@ struct EmbeddedSource {
     const char* name;  // file name, e.g. "rng.cl"
     const char* text;
 };
+using SourceTable = std::vector<EmbeddedSource>;
 
-const std::vector<EmbeddedSource>& embedded_sources();
+// kernels/*.cl and kernels/*.h.
+const SourceTable& embedded_sources();
 
-// The text of one embedded file; throws if there is none of that name.
+// The text of one file of embedded_sources(); throws if there is none of that name.
 const std::string& embedded_source(const std::string& name);
 
-// An OpenCL program is the shared struct header followed by the named kernel
-// files in order (the .cl files have no #include: order here is their dependency order).
-std::string program_source(const std::vector<std::string>& files);
+// The source of an OpenCL program: the root files in order, each with the
+// files it #includes ("name", looked up in embedded_sources() and in
+// `extra`, whose names must differ from those) put in place of the #include line, and each file taken
+// once (as #pragma once would; the files also have include guards). Includes
+// are resolved here rather than by the OpenCL compiler because the files
+// exist only inside the binary, and a driver cannot be shown them portably.
+// A quoted #include must therefore be unconditional; <...> includes are left
+// alone (shared_structs.h has one for the host, in a branch OpenCL skips).
+// #line directives keep compiler messages pointing at the right file and line.
+// Throws clpath::Error for a file that is not embedded.
+std::string program_source(const std::vector<std::string>& roots, const SourceTable& extra = {});
 
-// The renderer's kernel files, in dependency order.
+// The renderer's root kernel files.
 const std::vector<std::string>& renderer_kernel_files();
 
 }  // namespace clpath

@@ -12,6 +12,7 @@
 #include "cli/commands.hpp"
 #include "cli/option_checks.hpp"
 #include "scene/scene_loader.hpp"
+#include "shared_structs.h"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -71,8 +72,9 @@ int run_rays(const RaysOptions& o) {
     }
     const DeviceInfo device = select_device(o.device);
     Context ctx(device);
-    std::fprintf(stderr, "clpath: bench rays '%s' (%zu triangles, %s) at %dx%d x 16 samples on %s\n", scene.name.c_str(),
-                 scene.triangle_count(), accel_name(bo.accel), bo.width, bo.height, device.describe().c_str());
+    std::fprintf(stderr, "clpath: bench rays '%s' (%zu triangles, %s) at %dx%d x %u samples on %s\n", scene.name.c_str(),
+                 scene.triangle_count(), accel_name(bo.accel), bo.width, bo.height, CLP_BATCH_SAMPLES,
+                 device.describe().c_str());
     RayBenchResult r;
     try {
         r = run_ray_bench(ctx, scene, bo, [](const std::string& s) { std::fprintf(stderr, "clpath: %s\n", s.c_str()); });
@@ -120,8 +122,13 @@ Command add_bench_rays_command(CLI::App& bench) {
         "rays", "Ray-batch traversal benchmark: primary, shadow and diffuse batches, Mrays/s, checked on the CPU");
     cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj) or built-in scene (cornell, scaling:N, room:N)")
         ->required();
-    cmd->add_option("--width", o->width, "Pixels across (a multiple of 4)")->check(whole_number(4, 16384))->capture_default_str();
-    cmd->add_option("--height", o->height, "Pixels down (a multiple of 4)")->check(whole_number(4, 16384))->capture_default_str();
+    const std::string tile = std::to_string(CLP_BATCH_TILE);
+    cmd->add_option("--width", o->width, "Pixels across (a multiple of " + tile + ")")
+        ->check(whole_number(CLP_BATCH_TILE, 16384))
+        ->capture_default_str();
+    cmd->add_option("--height", o->height, "Pixels down (a multiple of " + tile + ")")
+        ->check(whole_number(CLP_BATCH_TILE, 16384))
+        ->capture_default_str();
     cmd->add_option("--camera", o->camera, "eye_x,eye_y,eye_z,target_x,target_y,target_z[,vfov] (default: the scene's)");
     cmd->add_option("--light", o->light,
                     "Point light x,y,z for the shadow rays (default: the scene's point light, else just below its "

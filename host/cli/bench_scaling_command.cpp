@@ -10,6 +10,7 @@
 #include "cl/context.hpp"
 #include "cli/commands.hpp"
 #include "cli/option_checks.hpp"
+#include "shared_structs.h"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -51,7 +52,8 @@ int run_scaling_cli(const ScalingCliOptions& c) {
         o.path_height = 12;
         o.path_spp = 1;
     }
-    if (o.ray_width % 4 || o.ray_height % 4) throw UsageError("--width and --height must be multiples of 4");
+    if (o.ray_width % int(CLP_BATCH_TILE) || o.ray_height % int(CLP_BATCH_TILE))
+        throw UsageError("--width and --height must be multiples of " + std::to_string(CLP_BATCH_TILE));
     if (!c.csv.empty()) check_report_path(c.csv, "--csv");
     if (!c.md.empty()) check_report_path(c.md, "--md");
     const DeviceInfo device = select_device(c.device);
@@ -86,11 +88,13 @@ Command add_bench_scaling_command(CLI::App& bench) {
     cmd->add_option("--accel", o->accel, "Structures to measure: both, bvh, flat")
         ->check(CLI::IsMember({"both", "bvh", "flat"}))
         ->capture_default_str();
-    cmd->add_option("--width", o->width, "Ray batches: pixels across (multiple of 4; x 16 samples)")
-        ->check(whole_number(4, 4096))
+    cmd->add_option("--width", o->width,
+                    "Ray batches: pixels across (multiple of " + std::to_string(CLP_BATCH_TILE) + "; x " +
+                        std::to_string(CLP_BATCH_SAMPLES) + " samples)")
+        ->check(whole_number(CLP_BATCH_TILE, 4096))
         ->capture_default_str();
-    cmd->add_option("--height", o->height, "Ray batches: pixels down (multiple of 4)")
-        ->check(whole_number(4, 4096))
+    cmd->add_option("--height", o->height, "Ray batches: pixels down (multiple of " + std::to_string(CLP_BATCH_TILE) + ")")
+        ->check(whole_number(CLP_BATCH_TILE, 4096))
         ->capture_default_str();
     cmd->add_option("--launches", o->launches, "Timed launches per batch")->check(whole_number(1, 100))->capture_default_str();
     cmd->add_option("--csv", o->csv, "Write the table as CSV to this file");

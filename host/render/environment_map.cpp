@@ -12,7 +12,7 @@ EnvironmentMap load_environment_map(const Environment& e) {
     EnvironmentMap m;
     if (e.image.empty()) {
         m.pixels.assign(4, 0.0f);
-        m.cdf = {-1.0f};
+        m.cdf = {CLP_ENV_NOT_SAMPLED};
         m.average_radiance = luminance(e.color);
         return m;
     }
@@ -44,14 +44,14 @@ EnvironmentMap load_environment_map(const Environment& e) {
     }
     m.average_radiance = solid_angle > 0 ? total / solid_angle * e.scale : 0;
     if (!e.importance_sampled || !(total > 0)) {
-        m.cdf = {-1.0f};
+        m.cdf = {CLP_ENV_NOT_SAMPLED};
         return m;
     }
     // CDFs in double, stored as float; the last entry is exactly 1.
-    m.cdf.assign((h + 1) + h * (w + 1), 0.0f);
+    m.cdf.assign(CLP_ENV_CDF_SIZE(w, h), 0.0f);
     std::vector<double> row_sum(h, 0.0);
     for (std::size_t y = 0; y < h; ++y) {
-        float* row = &m.cdf[(h + 1) + y * (w + 1)];
+        float* row = &m.cdf[CLP_ENV_ROW_CDF(w, h, y)];
         double acc = 0;
         for (std::size_t x = 0; x < w; ++x) acc += f[y * w + x];
         row_sum[y] = acc;

@@ -11,8 +11,8 @@ namespace clpath {
 struct EnvironmentMap {
     int width = 0, height = 0;     // 0 x 0 without an image
     std::vector<float> pixels;     // RGBA float, row 0 = straight up; one dummy texel without an image
-    // Marginal CDF over rows (height + 1), then each row's conditional CDF
-    // (width + 1 each), of luminance x sin(theta). {-1}: sample uniformly instead.
+    // Of luminance x sin(theta), in the layout of CLP_ENV_ROW_CDF; {CLP_ENV_NOT_SAMPLED}:
+    // sample the sphere uniformly instead (both in shared_structs.h).
     std::vector<float> cdf;
     double average_radiance = 0;   // mean luminance over the sphere (solid-angle weighted)
 };

@@ -38,9 +38,6 @@ SceneFeatures scene_features(const Scene& scene);
 // What this scene, rendered with these settings, uses. With settings.all_features
 // every feature is on, whatever the scene holds.
 KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings& settings);
-inline KernelFeatures kernel_features(const Scene& scene, const RenderSettings& settings) {
-    return kernel_features(scene_features(scene), settings);
-}
 
 // "-cl-std=CL1.2 -DCLP_HAS_MAT_DIFFUSE -DCLP_HAS_EMISSION ... -DCLP_INTEGRATOR=0u -DCLP_MAX_DEPTH=16u"
 std::string build_options(const KernelFeatures& features);

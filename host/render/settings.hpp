@@ -1,22 +1,17 @@
 #pragma once
 // How to render, apart from what: integrator, depth, roulette, seed, BVH
-// options. Names here are the ones the command line and scene files use.
+// options. The names of the choices are in scene/render_names.hpp.
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "bvh/accel.hpp"
 #include "bvh/bvh.hpp"
+#include "scene/render_names.hpp"
 #include "scene/scene.hpp"
 #include "shared_structs.h"
 
 namespace clpath {
-
-// How diffuse surfaces choose the next direction (kernels/sampling.cl).
-enum : std::uint32_t {
-    kHemisphereCosine = 0,   // by cos theta / pi: the weight is the albedo (clpath's default)
-    kHemisphereUniform = 1,  // uniformly over the hemisphere: the thesis text's estimator, kept for comparison
-};
 
 struct RenderSettings {
     std::uint32_t integrator = CLP_INTEGRATOR_PATH;
@@ -38,16 +33,9 @@ struct RenderSettings {
     Accel accel = Accel::Bvh;
 };
 
-// Throw clpath::Error naming the valid choices for an unknown name.
-std::uint32_t parse_integrator(const std::string& name);
-std::uint32_t parse_rr_rule(const std::string& name);
-std::uint32_t parse_hemisphere(const std::string& name);
-const char* integrator_name(std::uint32_t integrator);
-const char* rr_rule_name(std::uint32_t rule);
-const char* hemisphere_name(std::uint32_t hemisphere);
-const std::vector<std::string>& integrator_names();  // "path", "path-bsdf", "ao", ...
-const std::vector<std::string>& rr_rule_names();
-const std::vector<std::string>& hemisphere_names();  // "cosine", "uniform"
+// Throws clpath::Error for settings no render can use (the depth roulette rule
+// with no bounce, say).
+void validate_settings(const RenderSettings& settings);
 
 // The settings a scene file asks for (its "render" block).
 RenderSettings settings_from_scene(const SceneRenderDefaults& defaults);

@@ -50,7 +50,7 @@ struct SceneRenderDefaults {
     std::uint32_t spp = 64;
     std::uint32_t max_depth = 16;
     std::string russian_roulette = "throughput";  // none | throughput | depth
-    std::string integrator = "path";              // see render/integrators.hpp
+    std::string integrator = "path";              // see scene/render_names.hpp
     std::uint32_t seed = 0;
     float ao_distance = 0;                        // 0: a tenth of the scene's bounding-box diagonal
 };

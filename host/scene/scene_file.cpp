@@ -9,9 +9,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "render/settings.hpp"
 #include "scene/json_fields.hpp"
 #include "scene/obj_mesh.hpp"
+#include "scene/render_names.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/shapes.hpp"
 #include "util/error.hpp"
@@ -65,7 +65,7 @@ void read_render(Object o, SceneRenderDefaults& r) {
     if (auto v = o.get("max_depth")) r.max_depth = std::uint32_t(v->integer(0, 1024));
     if (auto v = o.get("seed")) r.seed = std::uint32_t(v->integer(0, 0xffffffffll));
     if (auto v = o.get("ao_distance")) r.ao_distance = v->real(jsonf::kNonNegative);
-    // The names are the command line's; settings.cpp owns the lists.
+    // The names are the command line's; scene/render_names.cpp owns the lists.
     auto name = [](const Value& v, auto parse) {
         const std::string s = v.string();
         try {

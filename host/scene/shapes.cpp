@@ -4,11 +4,12 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <stdexcept>
 #include <utility>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "util/error.hpp"
 
 namespace clpath {
 
@@ -39,8 +40,7 @@ std::vector<glm::vec3> make_box() {
 
 std::vector<glm::vec3> make_icosphere(int iterations) {
     if (iterations < 0 || iterations > 10)
-        throw std::invalid_argument("icosphere subdivision level must be in [0, 10], got " +
-                                    std::to_string(iterations));
+        throw Error("icosphere: the subdivision level must be in [0, 10], got " + std::to_string(iterations));
     const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
     std::vector<glm::vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
                                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
@@ -175,7 +175,9 @@ ShapeMesh make_uv_sphere(std::size_t triangles, const Bumps& bumps) {
 }
 
 ShapeMesh make_grid(int nx, int nz, const Bumps& height) {
-    if (nx < 1 || nz < 1) throw std::invalid_argument("grid resolution must be at least 1 x 1");
+    if (nx < 1 || nz < 1)
+        throw Error("grid: the resolution must be at least 1 x 1 cells, got " + std::to_string(nx) + " x " +
+                    std::to_string(nz));
     std::vector<glm::vec3> pos;
     pos.reserve(std::size_t(nx + 1) * (nz + 1));
     for (int i = 0; i <= nx; ++i)

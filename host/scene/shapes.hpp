@@ -1,7 +1,7 @@
 #pragma once
 // Shape generators, as in the thesis renderer: each builds a shape in a unit
 // local frame with outward-facing triangles (3 vertices each), and
-// transformed() places it.
+// transformed() places it. Parameters out of range throw clpath::Error.
 #include <cstddef>
 #include <utility>
 #include <vector>

@@ -35,8 +35,8 @@ using namespace viewer;
 using Clock = std::chrono::steady_clock;
 using json = nlohmann::json;
 
-// A resize is followed once the size has held this long: recreating the
-// renderer on every step of a drag would rebuild the BVH dozens of times.
+// A resize is followed once the size has held this long: a new film on every
+// step of a drag would allocate and clear dozens of them.
 constexpr double kResizeSettleSeconds = 0.2;
 // A slow frame must not turn into a jump: movement uses at most this much time.
 constexpr float kMaxMoveSeconds = 0.25f;
@@ -132,12 +132,18 @@ private:
         return glm::max(glm::ivec2(1), glm::ivec2(glm::round(glm::vec2(fb) * o_.render_scale)));
     }
 
-    // The old renderer stays until the new one is made, so that a failure
-    // (too large for the device, say) leaves a working viewer at the old size.
     void create_renderer(glm::ivec2 size) {
         scene_.camera = fly_.camera(size.x, size.y);
-        auto fresh = std::make_unique<Renderer>(*display_context_.context, scene_, settings_);
-        renderer_ = std::move(fresh);
+        renderer_ = std::make_unique<Renderer>(*display_context_.context, scene_, settings_);
+        pacer_.forget();
+        clear_error();
+    }
+
+    // A new film only: the scene stays on the device and the kernels stay
+    // built. The old film stays until the new one is made, so that a failure
+    // (too large for the device, say) leaves a working viewer at the old size.
+    void resize_renderer(glm::ivec2 size) {
+        renderer_->resize(fly_.camera(size.x, size.y));
         pacer_.forget();
         clear_error();
     }
@@ -179,7 +185,7 @@ private:
             pending_since_ = Clock::now();
         } else if (seconds_since(pending_since_) >= kResizeSettleSeconds) {
             try {
-                create_renderer(want);
+                resize_renderer(want);
             } catch (const Error& e) {
                 // Too large for the device, say: keep going at the old size.
                 set_error(std::string("cannot render at the new window size: ") + e.what());

@@ -70,7 +70,7 @@ std::vector<BatchRay> random_rays(std::size_t n, std::uint32_t seed, const std::
 }
 
 struct DeviceHits {
-    std::vector<BatchHit> closest;
+    std::vector<Hit> closest;
     std::vector<int> any;
 };
 
@@ -81,13 +81,13 @@ DeviceHits trace(const Bvh& structure, Accel accel, const std::vector<BatchRay>&
     Kernel any = ctx.kernel(built.program.get(), "batch_trace_any");
     const std::uint32_t n = std::uint32_t(rays.size());
     Buffer nodes = test::upload(structure.nodes), tris = test::upload(structure.triangles), rb = test::upload(rays);
-    Buffer hits = ctx.buffer(n * sizeof(BatchHit), CL_MEM_READ_WRITE, "hits");
+    Buffer hits = ctx.buffer(n * sizeof(Hit), CL_MEM_READ_WRITE, "hits");
     Buffer occ = ctx.buffer(n * sizeof(int), CL_MEM_READ_WRITE, "occluders");
     closest.arg(0, nodes).arg(1, tris).arg(2, rb).arg(3, hits).arg(4, n);
     any.arg(0, nodes).arg(1, tris).arg(2, rb).arg(3, occ).arg(4, n);
     test::run(closest, n);
     test::run(any, n);
-    return {test::download<BatchHit>(hits, n), test::download<int>(occ, n)};
+    return {test::download<Hit>(hits, n), test::download<int>(occ, n)};
 }
 
 // Brute force through the CPU reference: one leaf holding every triangle.

@@ -45,7 +45,8 @@ double solid_angle(dvec3 p) {
 bool sampled_by_solid_angle(dvec3 p) {
     const double omega = solid_angle(p);
     const double nearest = std::min({glm::length(kA - p), glm::length(kB - p), glm::length(kC - p)});
-    return omega >= 3e-4 && omega <= 6.22 && std::abs(p.z) >= 0.1 * nearest;
+    return omega >= CLP_MIN_SPHERICAL_AREA && omega <= CLP_MAX_SPHERICAL_AREA &&
+           std::abs(p.z) >= CLP_MIN_SPHERICAL_ELEVATION * nearest;
 }
 
 // The point of the triangle at square-root-warp coordinates (u1, u2), the

@@ -1,18 +1,55 @@
 /* Test-only entry points: each exposes one kernel function to the host tests,
  * so the tests exercise the very code the renderer runs. */
+#ifndef CLP_PROBES_CL
+#define CLP_PROBES_CL
 
-kernel void probe_struct_sizes(global uint* out) {
-    out[0] = sizeof(BvhNode);
-    out[1] = sizeof(TriVerts);
-    out[2] = sizeof(Material);
-    out[3] = sizeof(CameraData);
-    out[4] = sizeof(FrameParams);
-    out[5] = sizeof(Counters);
-    out[6] = sizeof(AccumPixel);
-    out[7] = sizeof(Light);
-    out[8] = sizeof(AliasEntry);
-    out[9] = sizeof(BatchRay);
-    out[10] = sizeof(BatchHit);
+#include "integrator.cl"
+#include "shared_struct_fields.h"
+
+/* The layout the device compiler gives the shared structs: for each struct
+ * (shared_struct_fields.h order) its size, then for each field its offset
+ * and size. offsetof is not in every OpenCL C version: the address of the
+ * field in a struct at address 0 is the same number. */
+#define CLP_PROBE_OFFSETOF(S, f) ((uint)(size_t) & (((S*)0)->f))
+#define CLP_PROBE_STRUCT(S) out[n++] = (uint)sizeof(S);
+#define CLP_PROBE_FIELD(S, f) out[n] = CLP_PROBE_OFFSETOF(S, f), out[n + 1] = (uint)sizeof(((S*)0)->f), n += 2;
+kernel void probe_struct_layout(global uint* out) {
+    uint n = 0;
+    CLP_SHARED_STRUCTS(CLP_PROBE_STRUCT)
+    CLP_SHARED_FIELDS(CLP_PROBE_FIELD)
+}
+
+/* The host/kernel contracts of shared_structs.h as the kernels see them,
+ * after every kernel file: ints first, then floats (contracts_test.cpp). */
+kernel void probe_contracts(global uint* out, global float* fout) {
+    out[0] = CLP_TILE;
+    out[1] = CLP_BATCH_TILE;
+    out[2] = CLP_BATCH_GRID;
+    out[3] = CLP_BATCH_SAMPLES;
+    out[4] = CLP_ENV_ROW_CDF(7u, 5u, 3u);
+    out[5] = CLP_ENV_CDF_SIZE(7u, 5u);
+    out[6] = CLP_ENV_IS_SAMPLED(CLP_ENV_NOT_SAMPLED);
+    out[7] = CLP_ENV_IS_SAMPLED(0.0f);
+    fout[0] = CLP_MIN_SPHERICAL_AREA;
+    fout[1] = CLP_MAX_SPHERICAL_AREA;
+    fout[2] = CLP_MIN_SPHERICAL_ELEVATION;
+    fout[3] = CLP_ENV_NOT_SAMPLED;
+}
+
+/* Directions drawn from the environment distribution the host built, and
+ * the pdf the kernels give them: out[i] = (d, solid-angle pdf). fp holds the
+ * image size, scale and rotation as the renderer sets them. */
+kernel void probe_env_sample(constant const FrameParams* fp, global const float4* pixels, global const float* cdf,
+                             uint count, uint seed, global float4* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    EnvMap env;
+    env.pixels = pixels;
+    env.cdf = cdf;
+    Rng r = rng_seed(i, 3, seed);
+    float u1 = rng_next(&r), u2 = rng_next(&r);
+    float3 d = env_sample_direction(fp, &env, u1, u2);
+    out[i] = (float4)(d, env_pdf(fp, &env, d));
 }
 
 /* out[i * n + j]: the j-th number of stream (pixel = i, sample = sample). */
@@ -148,3 +185,5 @@ kernel void probe_triangle_light(global const Light* l, float px, float py, floa
     out[i] = (float4)(q, s.pdf);
     pdf_out[i] = triangle_sample_pdf(l, p, s.wi, length(q - p));
 }
+
+#endif

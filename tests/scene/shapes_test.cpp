@@ -3,6 +3,7 @@
 
 #include "scene/scene_builder.hpp"
 #include "scene/shapes.hpp"
+#include "util/error.hpp"
 
 namespace clpath {
 namespace {
@@ -77,7 +78,25 @@ TEST(Shapes, GridFacesUpAndFollowsItsHeight) {
             centre = true;
         }
     EXPECT_TRUE(centre);
-    EXPECT_THROW(make_grid(0, 3), std::invalid_argument);
+}
+
+// Out-of-range parameters are the one user-facing error type (util/error.hpp),
+// whose message the program prints as "clpath: error: ...", never an internal error.
+TEST(Shapes, BadParametersAreUserErrors) {
+    auto message = [](auto make) -> std::string {
+        try {
+            make();
+        } catch (const Error& e) {
+            return e.what();
+        } catch (const std::exception& e) {
+            return std::string("not a clpath::Error: ") + e.what();
+        }
+        return "no error";
+    };
+    EXPECT_EQ(message([] { make_grid(0, 3); }), "grid: the resolution must be at least 1 x 1 cells, got 0 x 3");
+    EXPECT_EQ(message([] { make_icosphere(11); }), "icosphere: the subdivision level must be in [0, 10], got 11");
+    EXPECT_EQ(message([] { make_smooth_icosphere(-1); }),
+              "icosphere: the subdivision level must be in [0, 10], got -1");
 }
 
 TEST(Shapes, IcosphereNormalsArePositions) {

@@ -18,22 +18,24 @@ Context& device() {
     return *ctx;
 }
 
-cl_program probe_program(const RenderSettings& settings) {
-    // One program per set of build options, built on first use; the device
-    // first, so that the programs are released before its context.
+cl_program test_program(const std::string& root, const std::string& options) {
+    // Built on first use; the device first, so that the programs are
+    // released before its context.
     Context& ctx = device();
-    static std::map<std::string, Program> programs;
+    static std::map<std::pair<std::string, std::string>, Program> programs;
+    const auto key = std::make_pair(root, options);
+    auto it = programs.find(key);
+    if (it == programs.end())
+        it = programs.emplace(key, build_program(ctx, program_source({root}, test_kernel_sources()), options).program)
+                 .first;
+    return it->second.get();
+}
+
+cl_program probe_program(const RenderSettings& settings) {
     RenderSettings all = settings;
     // Every feature compiled in, so probes reach every material and light kind.
     all.all_features = true;
-    const std::string options = build_options(kernel_features(SceneFeatures{}, all));
-    auto it = programs.find(options);
-    if (it == programs.end()) {
-        auto files = renderer_kernel_files();
-        files.push_back("probes.cl");
-        it = programs.emplace(options, build_program(ctx, program_source(files), options).program).first;
-    }
-    return it->second.get();
+    return test_program("probes.cl", build_options(kernel_features(SceneFeatures{}, all)));
 }
 
 cl_program probe_program() { return probe_program(RenderSettings{}); }

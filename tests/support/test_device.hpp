@@ -5,15 +5,24 @@
 #include <vector>
 
 #include "cl/context.hpp"
+#include "cl/embedded_sources.hpp"
 #include "cl/program.hpp"
 #include "render/settings.hpp"
+
+namespace clpath {
+// Generated from tests/*/*.cl and tests/kernels/*.h (tests/CMakeLists.txt).
+const SourceTable& test_kernel_sources();
+}
 
 namespace clpath::test {
 
 Context& device();
 
-// A program made of the renderer's kernels plus tests/kernels/probes.cl,
-// built once per test program.
+// A program built from one test kernel file (which #includes the kernel files
+// it needs), once per test program and set of options.
+cl_program test_program(const std::string& root, const std::string& options);
+
+// tests/kernels/probes.cl, built once per test program.
 cl_program probe_program();
 // The same, built with the estimator choices of these settings (e.g. uniform
 // hemisphere sampling); every feature is compiled in whatever they say.

@@ -46,10 +46,11 @@ struct Session {
 
 // Runs 'clpath view' under Xvfb with a script. --frames bounds a session that
 // would otherwise wait forever (and fails it, as the script did not finish).
-Session view(const std::string& dir, const std::string& script, const std::string& extra = "") {
+Session view(const std::string& dir, const std::string& script, const std::string& extra = "", int width = kWidth,
+             int height = kHeight) {
     write_text(dir + "/script.txt", script);
     const std::string cmd = std::string(XVFB_RUN) + " -a -s '-screen 0 640x480x24' " + CLPATH_EXE +
-                            " view --width " + std::to_string(kWidth) + " --height " + std::to_string(kHeight) +
+                            " view --width " + std::to_string(width) + " --height " + std::to_string(height) +
                             " --frames 3000 --script " + dir + "/script.txt --state-log " + dir +
                             "/state.jsonl --screenshot-dir " + dir + " " + extra;
     Session s;
@@ -225,6 +226,32 @@ TEST(Session, ScreenshotAgreesWithRenderOfTheSameCamera) {
     const BlockAgreement wrong = compare_blocks(mirrored(view_image), kViewSpp, refs, kRefSpp, alpha);
     EXPECT_FALSE(wrong.agrees) << "a mirrored image passed: " << wrong.report;
     std::printf("mirrored vs render: %s\n", wrong.report.c_str());
+}
+
+// A resize makes a new film only (the scene stays on the device, the kernels
+// stay built): the image after it is, bit for bit, the one a viewer opened at
+// that size renders.
+TEST(Session, ResizedViewRendersLikeOneOpenedAtThatSize) {
+    const std::string dir = test_dir();
+    // The new size is followed once it has held 0.2 s; at --max-spp a frame
+    // sleeps half a frame budget, so 200 frames are far longer than that.
+    const Session resized = view(dir, "wait-spp 2\nresize 80 60\nwait 200\nwait-spp 8\nscreenshot resized\nquit\n",
+                                 "--max-spp 8");
+    ASSERT_EQ(resized.result.exit_code, 0) << resized.result.output;
+    const auto frames = resized.frames();
+    ASSERT_FALSE(frames.empty());
+    EXPECT_EQ(frames.front()["width"], kWidth);
+    EXPECT_EQ(frames.back()["width"], 80);
+    EXPECT_EQ(frames.back()["height"], 60);
+    fs::create_directories(dir + "/opened");
+    const Session opened = view(dir + "/opened", "wait-spp 8\nscreenshot opened\nquit\n", "--max-spp 8", 80, 60);
+    ASSERT_EQ(opened.result.exit_code, 0) << opened.result.output;
+    const Image a = read_image(dir + "/resized.exr"), b = read_image(dir + "/opened/opened.exr");
+    ASSERT_EQ(a.width, 80);
+    ASSERT_EQ(a.height, 60);
+    ASSERT_EQ(b.width, 80);
+    EXPECT_EQ(differing_pixels(a, b), 0u);
+    EXPECT_GT(differing_pixels(a, mirrored(a)), 0u) << "the comparison would not see a wrong image";
 }
 
 TEST(Session, CtrlCExitsCleanly) {

@@ -1,0 +1,58 @@
+#include "render/device_scene.hpp"
+
+#include <algorithm>
+
+namespace clpath {
+namespace {
+
+// Kernels take no empty buffers: a missing part gets one zero record.
+std::size_t normal_bytes(const PreparedScene& s) { return std::max<std::size_t>(16, s.normals.size() * 12); }
+std::size_t light_bytes(const PreparedScene& s) { return std::max<std::size_t>(1, s.lights.size()) * sizeof(Light); }
+std::size_t alias_bytes(const PreparedScene& s) {
+    return std::max<std::size_t>(1, s.light_alias.size()) * sizeof(AliasEntry);
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::size_t>> DeviceScene::memory_needs(const PreparedScene& s) {
+    return {{"BVH nodes", s.accel.nodes.size() * sizeof(BvhNode)},
+            {"triangles", s.accel.triangles.size() * sizeof(TriVerts)},
+            {"triangle materials", s.triangle_material.size() * sizeof(std::uint32_t)},
+            {"materials", s.materials.size() * sizeof(Material)},
+            {"shading normals", normal_bytes(s)},
+            {"lights", light_bytes(s) + alias_bytes(s)},
+            {"environment image", s.environment.pixels.size() * sizeof(float)},
+            {"environment distribution", s.environment.cdf.size() * sizeof(float)}};
+}
+
+DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s) : ctx_(ctx), summary_(s.summary) {
+    ctx.check_fits(memory_needs(s));
+    nodes_ = ctx.buffer(s.accel.nodes.size() * sizeof(BvhNode), CL_MEM_READ_ONLY, "BVH nodes", s.accel.nodes.data());
+    tris_ = ctx.buffer(s.accel.triangles.size() * sizeof(TriVerts), CL_MEM_READ_ONLY, "triangles",
+                       s.accel.triangles.data());
+    tri_material_ = ctx.buffer(s.triangle_material.size() * sizeof(std::uint32_t), CL_MEM_READ_ONLY,
+                               "triangle materials", s.triangle_material.data());
+    materials_ =
+        ctx.buffer(s.materials.size() * sizeof(Material), CL_MEM_READ_ONLY, "materials", s.materials.data());
+    const std::vector<float> zeros(16, 0.0f);
+    normals_ = ctx.buffer(normal_bytes(s), CL_MEM_READ_ONLY, "shading normals",
+                          s.normals.empty() ? static_cast<const void*>(zeros.data()) : s.normals.data());
+    const Light no_light{};
+    const AliasEntry no_alias{};
+    lights_ = ctx.buffer(light_bytes(s), CL_MEM_READ_ONLY, "lights",
+                         s.lights.empty() ? static_cast<const void*>(&no_light) : s.lights.data());
+    alias_ = ctx.buffer(alias_bytes(s), CL_MEM_READ_ONLY, "light alias table",
+                        s.light_alias.empty() ? static_cast<const void*>(&no_alias) : s.light_alias.data());
+    env_pixels_ = ctx.buffer(s.environment.pixels.size() * sizeof(float), CL_MEM_READ_ONLY, "environment image",
+                             s.environment.pixels.data());
+    env_cdf_ = ctx.buffer(s.environment.cdf.size() * sizeof(float), CL_MEM_READ_ONLY, "environment distribution",
+                          s.environment.cdf.data());
+}
+
+void DeviceScene::bind(Kernel& k, cl_uint first) const {
+    const Buffer* args[kArgCount] = {&nodes_,  &tris_,  &tri_material_, &materials_, &normals_,
+                                     &lights_, &alias_, &env_pixels_,   &env_cdf_};
+    for (cl_uint i = 0; i < kArgCount; ++i) k.arg(first + i, *args[i]);
+}
+
+}  // namespace clpath

@@ -1,0 +1,77 @@
+#pragma once
+// The integrator as a compiled OpenCL program: the kernels specialised to the
+// features a scene and settings need (kernel_features.hpp), built or loaded
+// through the binary cache, and the launches that add samples to a film,
+// sized to a time target and to the kernels' 32-bit counters.
+#include <cstdint>
+
+#include "cl/context.hpp"
+#include "cl/program.hpp"
+#include "render/device_scene.hpp"
+#include "render/film.hpp"
+#include "render/kernel_features.hpp"
+#include "render/settings.hpp"
+#include "scene/scene.hpp"
+
+namespace clpath {
+
+// What the launches did since the last reset_stats().
+struct LaunchStats {
+    std::uint64_t rays = 0;       // every ray traced
+    std::uint64_t nonfinite = 0;  // samples dropped as NaN/inf
+    std::uint64_t launches = 0;
+    double render_seconds = 0;    // wall time spent in launches, to their completion
+};
+
+// Most rays one sample can trace, for any integrator: a path traces its
+// camera ray and one ray per bounce (max_depth + 1) and one shadow ray per
+// bounce (max_depth); ambient occlusion 2. Launches are sized so that the
+// kernels' 32-bit ray counter cannot overflow (host totals are 64-bit).
+constexpr std::uint64_t max_rays_per_sample(const RenderSettings& s) { return 2ull * s.max_depth + 2; }
+
+class IntegratorProgram {
+public:
+    // Compiles (or loads from the cache) the kernels for this scene under these
+    // settings, whose acceleration structure must be the scene's. Throws
+    // clpath::Error for invalid settings or a failed build.
+    IntegratorProgram(Context& ctx, const SceneSummary& scene, const RenderSettings& settings);
+
+    // New settings: the kernels are rebuilt (or loaded from the cache) when the
+    // features they need change, e.g. another integrator; the launch timing is
+    // measured again. The acceleration structure is the scene's and cannot change.
+    void set_settings(const RenderSettings& settings);
+    const RenderSettings& settings() const { return settings_; }
+    const KernelFeatures& features() const { return features_; }
+    double compile_seconds() const { return compile_seconds_; }
+    bool compiled_from_cache() const { return from_cache_; }
+
+    // Adds n samples per pixel to the film, of the scene seen through the
+    // camera (of the film's size), in as many launches as the time target
+    // asks; returns when they have finished. Nothing is rendered when the film
+    // would pass kMaxSamplesPerPixel (clpath::Error).
+    void add_samples(const DeviceScene& scene, Film& film, const Camera& camera, std::uint32_t n);
+    // The program's film_resolve kernel, for Film::resolve_on_device.
+    Kernel& resolve_kernel() { return resolve_; }
+
+    const LaunchStats& stats() const { return stats_; }
+    void reset_stats() { stats_ = LaunchStats{}; }
+
+private:
+    void compile();
+    void launch_band(const DeviceScene& scene, Film& film, const CameraData& camera, std::uint32_t first_pixel,
+                     std::uint32_t pixel_count, std::uint32_t samples);
+
+    Context& ctx_;
+    SceneFeatures scene_features_;
+    RenderSettings settings_;
+    KernelFeatures features_;
+    Buffer params_, counters_;
+    Program program_;
+    Kernel render_, resolve_;
+    LaunchStats stats_;
+    double compile_seconds_ = 0;
+    bool from_cache_ = false;
+    double seconds_per_pixel_sample_ = 0;  // measured; sizes the launches
+};
+
+}  // namespace clpath

@@ -1,0 +1,60 @@
+#pragma once
+// A scene made ready for the kernels, on the host and once: validated, its
+// acceleration structure built, its light table and environment distribution
+// made. It names no device, so one PreparedScene can be uploaded to several
+// (DeviceScene) without building anything again.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bvh/accel.hpp"
+#include "bvh/bvh.hpp"
+#include "render/environment_map.hpp"
+#include "render/kernel_features.hpp"
+#include "render/light_table.hpp"
+#include "render/settings.hpp"
+#include "scene/scene.hpp"
+#include "shared_structs.h"
+
+namespace clpath {
+
+// What a render needs to know of a scene once its arrays are on a device:
+// small, copied into every DeviceScene.
+struct SceneSummary {
+    std::string name;
+    Accel accel = Accel::Bvh;
+    SceneFeatures features;
+    BvhStats bvh_stats;
+    std::size_t triangle_count = 0;
+    std::size_t light_count = 0;                // entries of the light table
+    std::uint32_t environment_light = CLP_NO_LIGHT;  // the environment's entry in it
+    int environment_width = 0, environment_height = 0;  // 0 x 0: no image
+    glm::vec3 environment_color{0};
+    float environment_scale = 1;
+    float environment_rotation = 0;  // radians about +y
+    float diagonal = 1;              // of the bounding box; 1 for a degenerate one
+};
+
+struct PreparedScene {
+    SceneSummary summary;
+    Camera camera;  // the scene's own
+    // The structure the kernels traverse; its leaf-ordered triangles carry their light's index.
+    Bvh accel;
+    std::vector<std::uint32_t> triangle_material;  // per scene triangle
+    std::vector<Material> materials;
+    std::vector<glm::vec3> normals;  // empty, or three per scene triangle
+    std::vector<Light> lights;
+    std::vector<AliasEntry> light_alias;  // parallel to lights
+    EnvironmentMap environment;
+};
+
+// Builds the structure of settings.accel with settings.bvh (the other settings
+// change nothing here). Throws clpath::Error when the scene is invalid or its
+// environment image cannot be read.
+std::shared_ptr<const PreparedScene> prepare_scene(const Scene& scene, const RenderSettings& settings);
+
+}  // namespace clpath

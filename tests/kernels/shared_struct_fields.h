@@ -1,0 +1,34 @@
+/* Every struct of kernels/shared_structs.h and every field of each, listed
+ * once for the host test and the device probe alike (X macros: the caller
+ * passes S(struct) and F(struct, field)). The test also checks that each
+ * struct's fields tile it without a gap, so a field missing here is noticed. */
+#ifndef CLP_SHARED_STRUCT_FIELDS_H
+#define CLP_SHARED_STRUCT_FIELDS_H
+
+#define CLP_SHARED_STRUCTS(S) \
+    S(BvhNode) S(TriVerts) S(Material) S(Light) S(AliasEntry) S(CameraData) S(FrameParams) S(Counters) \
+    S(AccumPixel) S(BatchRay) S(Hit)
+
+#define CLP_SHARED_FIELDS(F) \
+    F(BvhNode, lo0) F(BvhNode, child0) F(BvhNode, hi0) F(BvhNode, count0) \
+    F(BvhNode, lo1) F(BvhNode, child1) F(BvhNode, hi1) F(BvhNode, count1) \
+    F(TriVerts, v0) F(TriVerts, prim) F(TriVerts, v1) F(TriVerts, light) F(TriVerts, v2) F(TriVerts, pad2) \
+    F(Material, albedo) F(Material, kind) F(Material, emission) F(Material, flags) F(Material, roughness) \
+    F(Material, ior) F(Material, pad0) F(Material, pad1) \
+    F(Light, a) F(Light, type) F(Light, b) F(Light, flags) F(Light, c) F(Light, cos_outer) F(Light, L) \
+    F(Light, cos_inner) \
+    F(AliasEntry, prob) F(AliasEntry, alias) F(AliasEntry, pmf) F(AliasEntry, pad) \
+    F(CameraData, eye) F(CameraData, width) F(CameraData, forward) F(CameraData, height) F(CameraData, right) \
+    F(CameraData, pad0) F(CameraData, up) F(CameraData, pad1) \
+    F(FrameParams, camera) F(FrameParams, seed) F(FrameParams, first_sample) F(FrameParams, samples) \
+    F(FrameParams, max_depth) F(FrameParams, rr_rule) F(FrameParams, rr_min_depth) F(FrameParams, pixel_offset) \
+    F(FrameParams, pixel_count) F(FrameParams, light_count) F(FrameParams, env_light) F(FrameParams, ao_distance) \
+    F(FrameParams, depth_scale) F(FrameParams, env_color) F(FrameParams, env_width) F(FrameParams, env_scale) \
+    F(FrameParams, env_rot_cos) F(FrameParams, env_rot_sin) F(FrameParams, env_height) F(FrameParams, scene_flags) \
+    F(FrameParams, pad0) F(FrameParams, pad1) F(FrameParams, pad2) \
+    F(Counters, rays) F(Counters, nonfinite) F(Counters, pad0) F(Counters, pad1) \
+    F(AccumPixel, sum) F(AccumPixel, comp) \
+    F(BatchRay, o) F(BatchRay, tmax) F(BatchRay, d) F(BatchRay, src) \
+    F(Hit, t) F(Hit, b1) F(Hit, b2) F(Hit, tri)
+
+#endif
