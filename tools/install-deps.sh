@@ -10,6 +10,8 @@ fi
 # libclang-rt-14-dev holds libFuzzer and the sanitizer runtimes for the fuzz tests;
 # clang only recommends it, and recommends are not installed here.
 # xauth: xvfb-run (the viewer tests) needs it; xvfb only recommends it.
+# libopenmpi-dev, openmpi-bin: rendering over MPI ranks (optional at build
+# time, but the test suite checks it).
 # oclgrind: a second OpenCL implementation, a simulator that checks every kernel
 # for out-of-bounds and uninitialised accesses and data races (tests/kernels/).
 packages="
@@ -19,6 +21,7 @@ packages="
     libtinyobjloader-dev nlohmann-json3-dev libcli11-dev libgtest-dev
     xvfb xauth libimgui-dev glmark2-data
     python3-numpy python3-matplotlib
+    libopenmpi-dev openmpi-bin
 "
 missing=""
 for p in $packages; do

@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # The full convergence benchmark (clpath bench convergence) on one device:
 #  - cornell-classic, 128x128, against the Cycles reference
-#    (benchmarks/references/cornell-classic-cycles.exr, independent renderer);
+#    (benchmarks/references/cornell-classic-cycles.exr, independent renderer,
+#    0.23 % darker than Mitsuba 3 away from the lamp: a bias floor);
+#  - cornell-classic-mitsuba, 64x64, against the Mitsuba 3 reference
+#    (benchmarks/references/mitsuba/cornell-classic.exr): its floor is noise;
 #  - cornell-thesis (glass and glossy), 160x128, against a high-sample clpath
 #    reference (benchmarks/references/cornell-thesis-clpath.exr: Cycles models
 #    those materials differently).
@@ -13,7 +16,7 @@
 # Writes OUT/<result>/{convergence.csv,convergence.md,convergence.png,log.txt,README.md}.
 #
 # Usage: benchmarks/convergence/run.sh [BUILD_DIR] [OUT] [MAX_SPP] [TIME_CAP_S] [DEVICE]
-# (ONLY=RESULT_NAME runs one of them: cornell-classic, cornell-thesis, cornell-thesis-40x32)
+# (ONLY=RESULT_NAME runs one of them: cornell-classic, cornell-classic-mitsuba, cornell-thesis, cornell-thesis-40x32)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 B=${1:-$root/build}; OUT=${2:-$root/benchmarks/results/pocl-epyc-2core/convergence}
@@ -59,6 +62,8 @@ bench() {  # result-name scene reference reference-description mask-level [clpat
 
 bench cornell-classic cornell-classic "$refs/cornell-classic-cycles.exr" \
   "Blender Cycles (independent renderer, 4096 spp)" 0.8
+bench cornell-classic-mitsuba cornell-classic "$refs/mitsuba/cornell-classic.exr" \
+  "Mitsuba 3.9.1 (independent renderer, 16 seeds x 256 spp)" 0.8 --width 64 --height 64
 thesis_ref="a high-sample clpath render (PoCL, path, 4096 spp; Cycles models glass and glossy differently)"
 bench cornell-thesis cornell-thesis "$refs/cornell-thesis-clpath.exr" "$thesis_ref" 5
 # The glass and the bright room keep every configuration below 30 dB at

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# One batch on the lent GPU machine (see ../shared/docs/gpu.md): registers the
-# NVIDIA OpenCL driver, lists devices, runs every test program on the GPU,
-# renders the default scene on the GPU and on the machine's CPU through PoCL,
-# and times a longer GPU render. Logs and images go to $OUT.
+# One batch on a machine with an NVIDIA GPU, from a build folder copied there
+# (the script builds nothing): registers the NVIDIA OpenCL driver, lists
+# devices, runs every test program on the GPU, renders the default scene on
+# the GPU and on the machine's CPU through PoCL, and times a longer GPU render.
+# Logs and images go to $OUT.
 # Usage: benchmarks/gpu/run_gpu_checks.sh BUILD_DIR   (a -DCLPATH_WITH_OIIO=OFF -DCLPATH_WITH_VIEWER=OFF build)
 set -u
 B=${1:-build-gpu}
@@ -22,8 +23,9 @@ for t in "$B"/tests/*_test; do
   CLPATH_DEVICE=nvidia timeout 300 "$t" --gtest_brief=1 2>&1 | tail -n 4
 done 2>&1 | tee -a "$OUT/gpu-tests.txt"
 
-# Equality in distribution between the GPU and PoCL (issue 7: bit equality
-# cannot hold between devices), and the hard-case suite on the GPU.
+# Equality in distribution between the GPU and PoCL (bit equality cannot hold
+# between devices: their float arithmetic and builtins differ), and the
+# hard-case suite on the GPU.
 echo "== cross-device agreement and robustness suite on the GPU" | tee "$OUT/robustness.txt"
 CLPATH_DEVICE=portable CLPATH_DEVICE_B=nvidia timeout 600 ctest --test-dir "$B" -R "ReferenceAgreement.CrossDevice" \
   --output-on-failure 2>&1 | tail -n 30 | tee -a "$OUT/robustness.txt"
@@ -39,12 +41,13 @@ echo "== renders" | tee "$OUT/summary.txt"
 "$B/clpath" render --device nvidia --spp 4096 --seed 3 -q -o "$OUT/cornell-gpu-4096.pfm" 2>&1 | tee -a "$OUT/summary.txt"
 "$B/clpath" render --device nvidia --spp 1024 --seed 4 --rr depth --max-depth 10 -q -o /tmp/thesis-rule.pfm 2>&1 | tee -a "$OUT/summary.txt"
 
-# The full scaling and ray-batch benchmarks on the GPU (issue 6), results under
+# The full scaling and ray-batch benchmarks on the GPU, results under
 # $OUT/results/<device-dir>/{scaling,rays}: copy them into
-# benchmarks/results/ on the main machine and plot there
-# (benchmarks/scaling/plot_scaling.py; the GPU machine may lack matplotlib).
-# GPU_BENCH_DIR names the device folder (default nvidia-h100); the ROADMAP
-# table's scenes are among the rays runs (bunny, room:1003542, room:3996202).
+# benchmarks/results/ and plot them where matplotlib is installed
+# (benchmarks/scaling/plot_scaling.py).
+# GPU_BENCH_DIR names the device folder (default nvidia-h100); the rays runs
+# include the scene sizes of tinybvh's published traversal figures (bunny,
+# room:1003542, room:3996202).
 echo "== scaling and ray-batch benchmarks on the GPU" | tee "$OUT/bench.txt"
 GPU_DIR=${GPU_BENCH_DIR:-nvidia-h100}
 PLOT=0 SCALING_MAX=${SCALING_MAX:-3e7} TIME_CAP=${TIME_CAP:-60} RAY_LAUNCHES=${RAY_LAUNCHES:-10} \

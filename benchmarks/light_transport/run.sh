@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Light-transport measurements of the light-transport issue, on one device:
+# Light-transport measurements, on one device:
 #  1. equal-time error of next-event estimation + MIS (path) against BSDF
 #     sampling alone (path-bsdf) on cornell-classic, against a high-sample
 #     reference rendered with path;

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Reference images for the convergence benchmark (benchmarks/references/):
+# Every reference image. First the primary ones, Mitsuba 3 renders of every
+# bundled scene and reference scene (make_mitsuba_references.sh; skip with
+# NO_MITSUBA=1), then the older ones (skip with NO_CYCLES=1):
 #  - cornell-classic-cycles.exr: Blender Cycles, an independent renderer, from
 #    `clpath export` (diffuse and emissive surfaces only), 128x128;
 #  - cornell-thesis-diffuse-cycles.exr: the same for the thesis room with
@@ -22,6 +24,8 @@ B=${1:-$root/build}; CYCLES_SPP=${2:-4096}; CLPATH_SPP=${3:-4096}
 here=$root/benchmarks/references
 clpath=$B/clpath
 [ -x "$clpath" ] || { echo "make_references.sh: no $clpath: build clpath first" >&2; exit 1; }
+[ -n "${NO_MITSUBA:-}" ] || "$here/make_mitsuba_references.sh" "$B"
+[ -z "${NO_CYCLES:-}" ] || exit 0
 if ! command -v blender >/dev/null; then
   echo "make_references.sh: installing Blender (apt-get install blender)" >&2
   sudo=(); [ "$(id -u)" = 0 ] || sudo=(sudo)

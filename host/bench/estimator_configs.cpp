@@ -8,8 +8,8 @@
 namespace clpath {
 
 const std::vector<EstimatorConfig>& estimator_configs() {
-    // The thesis renderer (docs: shared/docs/thesis-scene.md and the thesis
-    // text): BSDF sampling only, diffuse bounces uniform over the hemisphere,
+    // The thesis renderer (docs/thesis-scene.md, after its source and the
+    // thesis text): BSDF sampling only, diffuse bounces uniform over the hemisphere,
     // roulette by its depth rule, one bounding box per object.
     static const std::vector<EstimatorConfig> configs{
         {"thesis", "the thesis renderer's estimator",

@@ -1,5 +1,5 @@
 #pragma once
-// The triangle-count scaling benchmark (clpath bench scaling; issue 6): the
+// The triangle-count scaling benchmark (clpath bench scaling): the
 // generated scaling scenes (scaling:N, the same room around one bumpy sphere
 // whose size on screen stays fixed) from min to max triangles in 1-3-10
 // steps. Per size and structure: generation time, build time and Mtris/s,

@@ -13,6 +13,8 @@
 #include "cl/context.hpp"
 #include "cli/commands.hpp"
 #include "cli/option_checks.hpp"
+#include "cli/mpi_launch.hpp"
+#include "cli/series_exchange.hpp"
 #include "scene/scene_loader.hpp"
 #include "util/error.hpp"
 #include "util/text_file.hpp"
@@ -89,29 +91,40 @@ int run_convergence(const ConvergenceArgs& o) {
                  width == full_ref.width ? "" : " (reduced by block means)", (unsigned long long)limits.max_spp,
                  device.describe().c_str());
 
+    // Over MPI ranks, configuration i is measured on rank i mod ranks, and
+    // rank 0 gathers the series: a study ends in its time divided by the ranks.
+    const int rank = mpi_rank(), ranks = mpi_size();
     std::vector<ConvergenceSeries> series;
-    for (const auto& c : configs) {
+    for (std::size_t i = 0; i < configs.size(); ++i) {
+        if (int(i % std::size_t(ranks)) != rank) continue;
+        const EstimatorConfig& c = configs[i];
         RenderSettings settings = settings_from_scene(scene.render);
         for (const auto& [name, value] : c.options) apply_render_option(settings, name, value);
         const std::string options = describe_options(c.options);
-        std::fprintf(stderr, "clpath: %s (%s): %s\n", c.name.c_str(), c.description.c_str(), options.c_str());
+        std::fprintf(stderr, "clpath: %s%s (%s): %s\n", rank_prefix().c_str(), c.name.c_str(), c.description.c_str(),
+                     options.c_str());
         ConvergenceSeries s{c.name, c.description, options, {}};
         try {
             s.points = measure_convergence(ctx, scene, settings, reference, o.compare, limits, [&](const ConvergencePoint& p) {
-                std::fprintf(stderr, "clpath:   %-14s spp=%-6llu %9.3f s  psnr=%7.3f dB  rmse=%.5g  relmse=%.5g\n",
-                             c.name.c_str(), (unsigned long long)p.spp, p.seconds, p.error.psnr, p.error.rmse,
-                             p.error.relmse);
+                std::fprintf(stderr, "clpath:   %s%-14s spp=%-6llu %9.3f s  psnr=%7.3f dB  rmse=%.5g  relmse=%.5g\n",
+                             rank_prefix().c_str(), c.name.c_str(), (unsigned long long)p.spp, p.seconds,
+                             p.error.psnr, p.error.rmse, p.error.relmse);
             });
         } catch (const Error& e) {
             throw Error(o.scene + ": configuration '" + c.name + "': " + e.what());
         }
         series.push_back(std::move(s));
     }
+    if (ranks > 1) {
+        series = gather_series(series, configs);
+        if (rank != 0) return 0;
+    }
 
     const std::vector<double> levels{30, 35, 40};
     std::string md = "Convergence of `" + scene.name + "` at " + std::to_string(width) + "x" + std::to_string(height) +
                      " against `" + o.reference + "`" + (width == full_ref.width ? "" : " (reduced by block means)") +
-                     ", on " + device.describe() + ".";
+                     ", on " + device.describe() +
+                     (ranks > 1 ? " (configurations spread over " + std::to_string(ranks) + " MPI ranks)" : "") + ".";
     if (o.compare.mask_above > 0)
         md += " Pixels where the reference exceeds " + format_number(o.compare.mask_above) + " (and those within " +
               std::to_string(o.compare.mask_grow) + " pixels of them) are left out.";

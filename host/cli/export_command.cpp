@@ -1,5 +1,6 @@
 // clpath export SCENE OUT.json: the scene as OBJ + MTL + a clpath scene file,
-// for rendering references with another renderer (Blender Cycles).
+// for rendering references with another renderer (Blender Cycles); with
+// --format mitsuba, a Mitsuba 3 scene dictionary and one OBJ per material.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -8,6 +9,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/option_checks.hpp"
+#include "scene/mitsuba_export.hpp"
 #include "scene/obj_export.hpp"
 #include "scene/scene_loader.hpp"
 #include "util/error.hpp"
@@ -20,7 +22,38 @@ struct ExportArgs {
     std::string scene, out;
     int width = 0, height = 0;
     std::optional<std::uint32_t> max_depth;
+    std::string format = "obj";
 };
+
+// --format mitsuba: the meshes first, the scene dictionary that names them last.
+int run_mitsuba_export(const ExportArgs& o, const Scene& scene) {
+    namespace fs = std::filesystem;
+    const fs::path json = o.out;
+    MitsubaExport e;
+    try {
+        e = export_mitsuba_scene(scene, json.stem().string(), o.scene);
+    } catch (const Error& err) {
+        throw Error(o.scene + ": cannot export: " + err.what());
+    }
+    std::vector<fs::path> written;
+    std::error_code ec;
+    try {
+        for (const auto& [name, text] : e.meshes) {
+            const fs::path p = json.parent_path() / name;
+            check_text_output_path(p.string());
+            write_text_file(p.string(), text);
+            written.push_back(p);
+        }
+        write_text_file(json.string(), e.json);
+    } catch (const Error&) {
+        for (const auto& p : written) fs::remove(p, ec);
+        throw;
+    }
+    std::printf("wrote %s and %zu meshes: Mitsuba 3, %zu triangles, %dx%d, max depth %u\n", json.string().c_str(),
+                e.meshes.size(), scene.triangle_count(), scene.camera.width, scene.camera.height,
+                scene.render.max_depth);
+    return 0;
+}
 
 int run_export(const ExportArgs& o) {
     namespace fs = std::filesystem;
@@ -43,6 +76,10 @@ int run_export(const ExportArgs& o) {
     if (o.width) scene.camera.width = o.width;
     if (o.height) scene.camera.height = o.height;
     if (o.max_depth) scene.render.max_depth = *o.max_depth;
+    if (o.format == "mitsuba") {
+        if (!folder.empty() && !fs::is_directory(folder, ec)) fs::create_directories(folder, ec);
+        return run_mitsuba_export(o, scene);
+    }
     ObjExport e;
     try {
         e = export_obj_scene(scene, stem, o.scene);
@@ -76,10 +113,11 @@ Command add_export_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "export", "Write a scene as OBJ + MTL + a scene file (for Cycles references)");
     cmd->footer(
-        "Exportable: diffuse materials, emitters (one- or two-sided), flat-shaded triangles and a constant-colour\n"
-        "environment. Refused, naming the first one met: mirror, conductor (glossy) and dielectric (glass)\n"
-        "materials, smooth shading normals, punctual lights (point, spot, directional: so a bare mesh's default\n"
-        "sun too) and environment images. The output folder is created if missing.");
+        "--format obj (the default) exports diffuse materials, emitters (one- or two-sided), flat-shaded triangles\n"
+        "and a constant-colour environment, and refuses, naming the first one met: mirror, conductor (glossy) and\n"
+        "dielectric (glass) materials, smooth shading normals, punctual lights (point, spot, directional: so a\n"
+        "bare mesh's default sun too) and environment images. --format mitsuba exports every material and light.\n"
+        "The output folder is created if missing.");
     cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj) or built-in scene")->required();
     cmd->add_option("out", o->out, "Output scene file NAME.json; NAME.obj and NAME.mtl are written beside it")
         ->required();
@@ -87,6 +125,10 @@ Command add_export_command(CLI::App& app) {
     cmd->add_option("--height", o->height, "Image height (default: the scene's)")->check(whole_number(1, 16384));
     cmd->add_option("--max-depth", o->max_depth, "Maximum bounces to record (default: the scene's)")
         ->check(whole_number(0, 1024));
+    cmd->add_option("--format", o->format,
+                    "obj: OBJ + MTL + scene file, diffuse and emissive surfaces only (Cycles); mitsuba: a Mitsuba 3 "
+                    "scene dictionary (JSON) and one OBJ per material, every material and light (Mitsuba references)")
+        ->check(CLI::IsMember({"obj", "mitsuba"}));
     return [o] { return run_export(*o); };
 }
 

@@ -1,19 +1,16 @@
 #pragma once
-// Ctrl-C (SIGINT) and SIGTERM during a render: the first asks the render loop
-// to stop after the pass it is in, so that what it has can be written; a
-// second one ends the program at once, as usual.
+// Ctrl-C (SIGINT) and SIGTERM during a render: the first asks the render to
+// stop and keep what it has; a second Ctrl-C ends the program at once.
 namespace clpath {
 
-// Installs the handlers for the lifetime of the object; the destructor puts
-// the previous ones back.
-class InterruptGuard {
+class InterruptFlag {
 public:
-    InterruptGuard();
-    ~InterruptGuard();
-    InterruptGuard(const InterruptGuard&) = delete;
-    InterruptGuard& operator=(const InterruptGuard&) = delete;
-    // The signal that asked to stop (SIGINT or SIGTERM), or 0.
-    static int requested();
+    InterruptFlag();   // installs the handlers
+    ~InterruptFlag();  // restores the previous ones
+    InterruptFlag(const InterruptFlag&) = delete;
+    InterruptFlag& operator=(const InterruptFlag&) = delete;
+    bool raised() const;
+    int signal() const;  // the signal that raised it, 0 if none
 };
 
 }  // namespace clpath

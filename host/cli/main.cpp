@@ -4,9 +4,28 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/mpi_launch.hpp"
 #include "util/error.hpp"
 
+namespace {
+int run(int argc, char** argv);
+}
+
 int main(int argc, char** argv) {
+    try {
+        clpath::start_mpi_if_launched(&argc, &argv);
+    } catch (const clpath::Error& e) {
+        std::fprintf(stderr, "clpath: error: %s\n", e.what());
+        return 2;
+    }
+    const int rc = run(argc, argv);
+    clpath::finish_mpi(rc != 0);
+    return rc;
+}
+
+namespace {
+
+int run(int argc, char** argv) {
     CLI::App app{"clpath: an OpenCL Monte Carlo path tracer"};
     app.require_subcommand(1);
     std::map<CLI::App*, clpath::Command> commands;
@@ -40,10 +59,10 @@ int main(int argc, char** argv) {
             if (auto it = commands.find(sub); it != commands.end()) return it->second();
         return 2;
     } catch (const clpath::UsageError& e) {
-        std::fprintf(stderr, "clpath: error: %s\n", e.what());
+        std::fprintf(stderr, "clpath: error: %s%s\n", clpath::rank_prefix().c_str(), e.what());
         return 2;
     } catch (const clpath::Error& e) {
-        std::fprintf(stderr, "clpath: error: %s\n", e.what());
+        std::fprintf(stderr, "clpath: error: %s%s\n", clpath::rank_prefix().c_str(), e.what());
         return 1;
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "clpath: error: out of host memory\n");
@@ -53,3 +72,5 @@ int main(int argc, char** argv) {
         return 1;
     }
 }
+
+}  // namespace

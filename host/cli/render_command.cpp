@@ -1,6 +1,7 @@
+#include <algorithm>
 #include <cctype>
-#include <csignal>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -10,12 +11,14 @@
 
 #include "cl/context.hpp"
 #include "cli/commands.hpp"
-#include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
-#include "cli/progress.hpp"
 #include "cli/scene_overrides.hpp"
-#include "image/image.hpp"
 #include "image/tone_map.hpp"
+#include "cli/progress.hpp"
+#include "image/image.hpp"
+#include "cl/device_set.hpp"
+#include "cli/chunked_render.hpp"
+#include "cli/mpi_launch.hpp"
 #include "render/renderer.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/scene_loader.hpp"
@@ -41,11 +44,27 @@ struct RenderOptions {
     int leaf_size = 4, bins = 16;
     bool quiet = false;
     std::string accel = "bvh";
+    std::uint32_t chunk_samples = 0;
+    double checkpoint_seconds = 0;
+    std::string checkpoint_file, resume;
     float exposure = 0;
     std::string tonemap = "clamp";
     std::optional<std::string> camera, env;
-    bool no_ground = false, no_partial = false;
+    bool no_ground = false;
+    bool no_partial = false;
 };
+
+// The kernel's sRGB encoding (kernels/film.cl), for images resolved on the host.
+std::vector<std::uint8_t> srgb8_from_linear(const Image& img) {
+    auto enc = [](float x) {
+        x = std::clamp(x, 0.0f, 1.0f);
+        return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
+    };
+    std::vector<std::uint8_t> out(img.rgb.size() / 3 * 4, 255);
+    for (std::size_t i = 0; i < img.rgb.size() / 3; ++i)
+        for (int c = 0; c < 3; ++c) out[i * 4 + c] = std::uint8_t(enc(img.rgb[i * 3 + c]) * 255.0f + 0.5f);
+    return out;
+}
 
 bool is_bare_mesh(const std::string& spec) {
     std::string ext = std::filesystem::path(spec).extension().string();
@@ -101,88 +120,77 @@ int run_render(const RenderOptions& o) {
         std::fprintf(stderr, "clpath: warning: scene '%s' has no emitter; the image will be black\n",
                      scene.name.c_str());
 
-    const DeviceInfo device = select_device(o.device);
-    Context ctx(device);
-    if (!o.quiet)
+    const std::vector<DeviceInfo> devices = select_devices(o.device);
+    MpiJob* mpi = mpi_job();
+    if (!o.quiet) {
+        std::string names;
+        for (const auto& d : devices) names += (names.empty() ? "" : ", ") + d.describe();
         std::fprintf(stderr, "clpath: rendering '%s' (%zu triangles) at %dx%d with '%s' on %s\n", scene.name.c_str(),
                      scene.triangle_count(), scene.camera.width, scene.camera.height,
-                     integrator_name(settings.integrator), device.describe().c_str());
-    // A scene too large for the device is found here, before any allocation;
-    // the message then names the scene it is about.
-    std::unique_ptr<Renderer> renderer_ptr;
+                     integrator_name(settings.integrator), names.c_str());
+    }
+    ChunkedRenderOptions co;
+    co.spp = spp;
+    co.time_limit = o.time_limit;
+    co.chunk_samples = o.chunk_samples;
+    co.checkpoint_seconds = o.checkpoint_seconds;
+    co.checkpoint_path = o.checkpoint_file.empty() ? outputs.front() + ".checkpoint" : o.checkpoint_file;
+    co.resume_path = o.resume;
+    co.progress = !o.quiet;
+    ChunkedRenderResult result;
     try {
-        renderer_ptr = std::make_unique<Renderer>(ctx, scene, settings);
+        result = render_in_chunks(scene, settings, devices, co, mpi);
+    } catch (const UsageError&) {
+        throw;  // about the command line or the environment, not the scene
     } catch (const Error& e) {
         throw Error(o.scene + ": " + e.what());
     }
-    Renderer& renderer = *renderer_ptr;
-    if (!o.quiet)
-        std::fprintf(stderr, "clpath: %s; kernels %s in %.2f s\n", describe(renderer.bvh_stats()).c_str(),
-                     renderer.compiled_from_cache() ? "loaded from cache" : "compiled", renderer.compile_seconds());
-
-    Progress progress(spp, o.time_limit, !o.quiet);
-    // From here Ctrl-C or SIGTERM stops after the current pass (about a second
-    // at most) and the samples so far are written, unless --no-partial.
-    InterruptGuard interrupt;
-    const auto t0 = std::chrono::steady_clock::now();
-    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-    double seconds_per_sample = 0;  // measured on the way
-    for (;;) {
-        const std::uint64_t done = renderer.stats().samples_per_pixel;
-        if (InterruptGuard::requested()) break;
-        if (spp && done >= spp) break;
-        if (o.time_limit > 0 && elapsed() >= o.time_limit) break;
-        // One sample per step when a time limit is set, so the limit is kept closely;
-        // otherwise steps of up to 1/20 of the total, for a smooth progress bar,
-        // and of about a second at most, so that progress is reported often.
-        std::uint64_t step = o.time_limit > 0 ? 1 : std::max<std::uint64_t>(1, spp / 20);
-        // The first pass is one sample: it measures how long one takes.
-        step = seconds_per_sample > 0
-                   ? std::min(step, std::max<std::uint64_t>(1, std::uint64_t(1.0 / seconds_per_sample)))
-                   : 1;
-        if (spp) step = std::min(step, spp - done);
-        if (done + step > kMaxSamplesPerPixel) break;
-        const double before = elapsed();
-        renderer.add_samples(std::uint32_t(step));
-        const double after = elapsed();
-        seconds_per_sample = (after - before) / double(step);
-        progress.update(renderer.stats().samples_per_pixel, after);
+    if (!result.writes_output) return 0;
+    const std::uint64_t done_spp = result.film.samples_per_pixel();
+    if (result.interrupted) {
+        std::fprintf(stderr, "clpath: interrupted by signal %d after %llu samples per pixel\n", result.signal,
+                     (unsigned long long)done_spp);
+        if (o.no_partial) {
+            std::fprintf(stderr, "clpath: --no-partial: nothing written\n");
+            return 130;
+        }
     }
-    progress.finish();
-    const double wall = elapsed();
-    const int signal = InterruptGuard::requested();
-    // The shell's convention for a program ended by a signal: 128 + its number.
-    const int exit_status = signal ? 128 + signal : 0;
-    if (signal && (o.no_partial || renderer.stats().samples_per_pixel == 0)) {
-        std::fprintf(stderr, "clpath: interrupted (%s) after %llu samples per pixel; nothing written%s\n",
-                     signal == SIGINT ? "SIGINT" : "SIGTERM", (unsigned long long)renderer.stats().samples_per_pixel,
-                     o.no_partial ? " (--no-partial)" : "");
-        return exit_status;
-    }
-    if (signal && !o.quiet)
-        std::fprintf(stderr, "clpath: interrupted (%s): writing the image of the %llu samples per pixel so far\n",
-                     signal == SIGINT ? "SIGINT" : "SIGTERM", (unsigned long long)renderer.stats().samples_per_pixel);
-    RenderedImage image = renderer.resolve();
-    // PNG gets the display transform; EXR and PFM keep the linear radiance.
-    if (!display.is_identity()) image.srgb8 = display_srgb8(image.linear, display);
+    if (done_spp == 0) throw Error("no sample was finished, so there is no image to write");
+    RenderedImage image;
+    image.linear = result.film.mean();
+    // PNG gets the display transform (exposure, tone map); EXR and PFM keep the linear radiance.
+    image.srgb8 = display.is_identity() ? srgb8_from_linear(image.linear) : display_srgb8(image.linear, display);
     for (const auto& out : outputs) {
         write_image(out, image);
         if (!o.quiet) std::fprintf(stderr, "clpath: wrote %s\n", out.c_str());
     }
+    // A finished render needs its checkpoint no more.
+    if (!result.interrupted && o.checkpoint_seconds > 0) std::filesystem::remove(co.checkpoint_path);
 
-    const RenderStats& st = renderer.stats();
-    const double samples = double(st.samples_per_pixel) * scene.camera.width * scene.camera.height;
+    const double wall = result.wall_seconds;
+    const double samples = double(done_spp) * scene.camera.width * scene.camera.height;
+    std::string device_names;
+    for (const auto& d : devices) device_names += (device_names.empty() ? "" : ", ") + d.name;
     std::printf(
-        "summary: device=\"%s\" integrator=%s triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f spp=%llu "
-        "render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s interrupted=%d\n",
-        device.name.c_str(), integrator_name(settings.integrator), renderer.triangle_count(), renderer.bvh_stats().build_ms, renderer.bvh_stats().node_count,
-        renderer.bvh_stats().sah_cost, (unsigned long long)st.samples_per_pixel, wall, samples / wall * 1e-6,
-        double(st.rays) / wall * 1e-6, (unsigned long long)st.rays, (unsigned long long)st.nonfinite,
-        accel_name(settings.accel), signal ? 1 : 0);
-    if (st.nonfinite)
+        "summary: device=\"%s\" devices=%zu integrator=%s triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f "
+        "spp=%llu render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s%s\n",
+        device_names.c_str(), result.shares.size(), integrator_name(settings.integrator), scene.triangle_count(),
+        result.bvh.build_ms, result.bvh.node_count, result.bvh.sah_cost, (unsigned long long)done_spp, wall,
+        samples / wall * 1e-6, double(result.rays) / wall * 1e-6, (unsigned long long)result.rays,
+        (unsigned long long)result.nonfinite, accel_name(settings.accel),
+        result.interrupted ? " interrupted=1" : "");
+    if (result.shares.size() > 1 || mpi)
+        for (const auto& s : result.shares)
+            std::printf("device: \"%s\" chunks=%llu spp=%llu share=%.1f%% msamples_per_s=%.3f\n", s.device.c_str(),
+                        (unsigned long long)s.chunks, (unsigned long long)s.samples_per_pixel,
+                        done_spp ? 100.0 * double(s.samples_per_pixel) / double(done_spp) : 0.0,
+                        s.busy_seconds > 0 ? double(s.samples_per_pixel) * scene.camera.width * scene.camera.height /
+                                                 s.busy_seconds * 1e-6
+                                           : 0.0);
+    if (result.nonfinite)
         std::fprintf(stderr, "clpath: warning: %llu samples were NaN or infinite and were dropped\n",
-                     (unsigned long long)st.nonfinite);
-    return exit_status;
+                     (unsigned long long)result.nonfinite);
+    return 0;
 }
 
 }  // namespace
@@ -218,9 +226,6 @@ Command add_render_command(CLI::App& app) {
     cmd->add_option("--seed", o->seed, "Random seed (default 0)")->check(whole_number(0, 4294967295u));
     cmd->add_option("--width", o->width, "Image width (default: the scene's)")->check(whole_number(1, 16384));
     cmd->add_option("--height", o->height, "Image height (default: the scene's)")->check(whole_number(1, 16384));
-    cmd->add_option("--out,-o", o->outputs,
-                    "Output image, .png (8-bit sRGB), .exr or .pfm (linear float); repeatable "
-                    "(default: out/SCENE.png and out/SCENE.exr, the folder out/ created)");
     cmd->add_option("--exposure", o->exposure, "PNG only: brighten by this many stops (radiance x 2^stops)")
         ->check(real_number(-20, 20))
         ->capture_default_str();
@@ -236,9 +241,20 @@ Command add_render_command(CLI::App& app) {
                     "Environment override: a colour R,G,B (or one grey value) or an equirectangular .hdr/.exr "
                     "image; for a bare mesh it replaces the default sky and sun");
     cmd->add_flag("--no-ground", o->no_ground, "A bare mesh gets no ground plane");
+    cmd->add_option("--out,-o", o->outputs,
+                    "Output image, .png (8-bit sRGB), .exr or .pfm (linear float); repeatable "
+                    "(default: out/SCENE.png and out/SCENE.exr)");
     cmd->add_option("--device,-d", o->device,
-                    "OpenCL device: cpu, gpu (the first of that type), an index or a name substring (see 'clpath "
-                    "devices'; default $CLPATH_DEVICE, else the first GPU, else the first CPU)");
+                    "OpenCL device(s): an index or name substring (see 'clpath devices'), a comma-separated list "
+                    "of them, or 'all'; cpu or gpu picks the first device of that type");
+    cmd->add_option("--chunk", o->chunk_samples,
+                    "Samples per chunk handed to a device (default: spp/64, 1 to 64; 4 with --time alone)")
+        ->check(whole_number(1, 1u << 20));
+    cmd->add_option("--checkpoint", o->checkpoint_seconds, "Save the running sums every this many seconds")
+        ->check(real_number(0.001, 1e9));
+    cmd->add_option("--checkpoint-file", o->checkpoint_file, "Where checkpoints go (default: the first output + .checkpoint)");
+    cmd->add_option("--resume", o->resume, "Continue the render saved in this checkpoint (same scene, --spp, --chunk)");
+    cmd->add_flag("--no-partial", o->no_partial, "On Ctrl-C or SIGTERM, write nothing (default: the samples so far)");
     cmd->add_option("--leaf-size", o->leaf_size, "BVH: most triangles per leaf")
         ->check(whole_number(1, 64))
         ->capture_default_str();
@@ -247,9 +263,6 @@ Command add_render_command(CLI::App& app) {
                     "renderer's; a baseline)")
         ->check(CLI::IsMember(accel_names()))
         ->capture_default_str();
-    cmd->add_flag("--no-partial", o->no_partial,
-                  "On Ctrl-C or SIGTERM write nothing (default: write the image of the samples so far; the summary "
-                  "line then says interrupted=1, and the exit status is 128 + the signal's number)");
     cmd->add_flag("--quiet,-q", o->quiet, "Print only the summary line");
     return [o] { return run_render(*o); };
 }

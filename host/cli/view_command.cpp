@@ -1,5 +1,5 @@
 // 'clpath view': options of the interactive viewer (host/viewer). In a build
-// without the viewer (no GLFW, as on the GPU machine) the command still
+// without the viewer (configured with -DCLPATH_WITH_VIEWER=OFF, e.g. where GLFW is missing) the command still
 // exists and says so.
 #include <memory>
 

@@ -1,7 +1,7 @@
 #pragma once
 // Images in and out. PNG (8-bit sRGB) and EXR (linear float) go through
 // OpenImageIO; PFM (linear float) is written and read here, so a build without
-// OpenImageIO (the GPU machine's) still saves exact images.
+// OpenImageIO (-DCLPATH_WITH_OIIO=OFF) still saves exact images.
 #include <cstdint>
 #include <string>
 #include <vector>

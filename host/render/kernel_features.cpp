@@ -74,21 +74,4 @@ std::string build_options(const KernelFeatures& f) {
     return o;
 }
 
-std::string describe(const KernelFeatures& f) {
-    std::string s;
-    auto add = [&](bool on, std::string name) {
-        if (on) s += (s.empty() ? "" : " ") + name;
-    };
-    for (std::uint32_t k = 0; k < CLP_MAT_KIND_COUNT; ++k) add(f.materials[k], kMaterialNames[k]);
-    add(f.emission, "emission");
-    add(f.triangle_lights, "triangle-lights");
-    add(f.delta_lights, "delta-lights");
-    add(f.environment, "environment");
-    add(f.environment_map, "environment-map");
-    add(f.normals, "normals");
-    add(f.flat_accel, "flat-accel");
-    add(f.uniform_hemisphere, "uniform-hemisphere");
-    return s;
-}
-
 }  // namespace clpath

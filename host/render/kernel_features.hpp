@@ -42,7 +42,4 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
 // "-cl-std=CL1.2 -DCLP_HAS_MAT_DIFFUSE -DCLP_HAS_EMISSION ... -DCLP_INTEGRATOR=0u -DCLP_MAX_DEPTH=16u"
 std::string build_options(const KernelFeatures& features);
 
-// "diffuse emission triangle-lights" (for logs and benchmark tables).
-std::string describe(const KernelFeatures& features);
-
 }  // namespace clpath

@@ -8,7 +8,7 @@
 
 namespace clpath {
 
-// The thesis renderer's Cornell box (docs/scene-format.md, cornell-thesis), with every
+// The thesis renderer's Cornell box (docs/thesis-scene.md), with every
 // surface diffuse: the default scene.
 Scene cornell_thesis_scene();
 
@@ -20,8 +20,7 @@ Scene cornell_thesis_scene();
 Scene scaling_scene(std::size_t triangles);
 
 // A closed room (every ray from the camera hits something, as in the closed
-// room + displaced sphere scene of the ray-traversal benchmarks ROADMAP.md
-// compares with) around the same bumpy sphere as scaling_scene: six inward
+// room + displaced sphere scenes of tinybvh's published traversal figures) around the same bumpy sphere as scaling_scene: six inward
 // walls, a lamp under the ceiling and the sphere, about `triangles` in all.
 // The camera is the thesis camera, now inside the room. Counts: 100 to 50,000,000.
 Scene closed_room_scene(std::size_t triangles);

@@ -3,6 +3,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -28,6 +29,19 @@ std::string_view next_token(std::string_view& s) {
     std::string_view tok = s.substr(i, j - i);
     s.remove_prefix(j);
     return tok;
+}
+
+// The line starting at pos, without its end; pos moves past the end. Lines
+// end where tinyobjloader ends them: at \n, \r or \r\n.
+std::string_view next_line(const std::string& text, std::size_t& pos) {
+    std::size_t end = text.find('\n', pos);  // memchr-fast, then \r within the line only
+    if (end == std::string::npos) end = text.size();
+    const void* cr = std::memchr(text.data() + pos, '\r', end - pos);
+    if (cr) end = std::size_t(static_cast<const char*>(cr) - text.data());
+    const std::string_view line(text.data() + pos, end - pos);
+    pos = end;
+    if (pos < text.size() && text[pos++] == '\r' && pos < text.size() && text[pos] == '\n') ++pos;
+    return line;
 }
 
 bool parse_double(std::string_view t, double& out) {
@@ -93,10 +107,7 @@ Scan scan_obj(const std::string& text, const std::string& file) {
     };
     while (pos < text.size()) {
         ++line_no;
-        std::size_t nl = text.find('\n', pos);
-        if (nl == std::string::npos) nl = text.size();
-        std::string_view line(text.data() + pos, nl - pos);
-        pos = nl + 1;
+        const std::string_view line = next_line(text, pos);
         if (line.find('\0') != std::string_view::npos) fail("contains a NUL byte (is this a text OBJ file?)");
         std::string_view rest = line;
         const std::string_view key = next_token(rest);
@@ -184,6 +195,26 @@ void scan_mtl(const std::string& text, const std::string& file) {
         }
         if (n == 0) fail("needs a number");
     }
+}
+
+// tinyobjloader also parses statements clpath never uses (skin weights vw,
+// vp, lines and points, tags, smoothing groups, object and group names),
+// some unchecked: a vw joint id of 1e38 is converted to int out of range,
+// which is undefined behaviour. It is handed only the statements clpath
+// reads; every other line is emptied, so line numbers stay the same.
+std::string statements_clpath_reads(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    for (std::size_t pos = 0; pos < text.size();) {
+        const std::size_t start = pos;
+        const std::string_view line = next_line(text, pos);
+        std::string_view rest = line;
+        const std::string_view key = next_token(rest);
+        const bool used = key == "v" || key == "vn" || key == "vt" || key == "f" || key == "mtllib" || key == "usemtl";
+        const std::size_t from = used ? start : start + line.size();
+        out.append(text, from, pos - from);
+    }
+    return out;
 }
 
 std::string fmt3(const tinyobj::real_t* v) {
@@ -388,7 +419,8 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
     // in before the first usemtl: a leading mtllib line of our own when the
     // file uses a material before naming a library (or names none).
     const bool need_tag = scan.first_usemtl_line && (!scan.first_mtllib_line || scan.first_usemtl_line < scan.first_mtllib_line);
-    std::istringstream in(need_tag ? std::string("mtllib ") + kMaterialsTag + "\n" + text : text);
+    const std::string statements = statements_clpath_reads(text);
+    std::istringstream in(need_tag ? std::string("mtllib ") + kMaterialsTag + "\n" + statements : statements);
     // Faces come whole (triangulate = false): tinyobjloader cuts a quad along
     // its shorter diagonal, which lies outside a concave one.
     const bool ok = tinyobj::LoadObj(&attrib, &shapes, &unused, &warn, &err, &in, &reader, false);

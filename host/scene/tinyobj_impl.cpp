@@ -1,6 +1,6 @@
 // tinyobjloader's implementation, compiled from Debian's header into clpath
-// itself rather than linked from libtinyobjloader.so: the build that travels
-// to the GPU machine (which has no such library) then needs nothing more, and
+// itself rather than linked from libtinyobjloader.so: a build copied to a
+// machine without that library then needs nothing more, and
 // the fuzzers compile the parser with their instrumentation.
 #if defined(__GNUC__)
 #pragma GCC diagnostic push

@@ -1,7 +1,7 @@
 #pragma once
 // A JSON Lines record of the viewer's state, one line a frame plus one per
 // event (screenshot, capture, camera): what tests check, and a trace for
-// anyone debugging a session.
+// anyone debugging what the viewer did.
 #include <fstream>
 #include <string>
 

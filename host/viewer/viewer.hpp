@@ -2,8 +2,9 @@
 // 'clpath view': the progressive, interactive viewer.
 //
 // The render resolution follows the window's framebuffer (times
-// render_scale): a resize recreates the renderer once the size has settled,
-// and until then the last image is shown letterboxed.
+// render_scale): once a new size has settled the renderer gets a new film
+// for it (the scene stays on the device); until then the last image is shown
+// letterboxed.
 #include <cstdint>
 #include <optional>
 #include <string>

@@ -7,20 +7,14 @@
 
 #include "bvh/bvh.hpp"
 #include "scene/shapes.hpp"
+#include "support/random_geometry.hpp"
 
 using namespace clpath;
 
 namespace {
 
 std::vector<glm::vec3> soup(std::size_t n, std::uint32_t seed, float size = 0.1f) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(-1, 1);
-    std::vector<glm::vec3> v;
-    for (std::size_t i = 0; i < n; ++i) {
-        const glm::vec3 c(u(rng), u(rng), u(rng));
-        for (int k = 0; k < 3; ++k) v.push_back(c + size * glm::vec3(u(rng), u(rng), u(rng)));
-    }
-    return v;
+    return test::random_soup(n, seed, size, size);
 }
 
 Bvh checked(const std::vector<glm::vec3>& v, BvhBuildOptions o = {}) {
@@ -46,13 +40,25 @@ TEST(BvhBuild, OneAndTwoTriangles) {
 }
 
 TEST(BvhBuild, AllCentroidsEqual) {
-    // 100k triangles around one centre: the SAH finds no split; median splits must.
+    // 100k triangles of random shape and size around one centre: the SAH
+    // finds no split; median splits must. On every axis a triangle's
+    // coordinates are s, -s and 0, so its vertex mean and its box centre
+    // are both exactly the origin, whichever the builder bins by; the
+    // vertices (x, y, 0), (-x, 0, z), (0, -y, -z) span a triangle of area
+    // 1.5 |(yz, xz, xy)| > 0: not a degenerate case in disguise.
     std::vector<glm::vec3> v;
     std::mt19937 rng(4);
     std::uniform_real_distribution<float> u(0.1f, 1);
     for (int i = 0; i < 100000; ++i) {
         const glm::vec3 a(u(rng), u(rng), u(rng));
-        v.insert(v.end(), {a, -a, glm::vec3(a.y, -a.x, 0) - glm::vec3(a.y, -a.x, 0)});
+        v.insert(v.end(), {{a.x, a.y, 0}, {-a.x, 0, a.z}, {0, -a.y, -a.z}});
+    }
+    for (std::size_t t = 0; t < v.size(); t += 3) {
+        const glm::vec3 lo = glm::min(v[t], glm::min(v[t + 1], v[t + 2]));
+        const glm::vec3 hi = glm::max(v[t], glm::max(v[t + 1], v[t + 2]));
+        ASSERT_EQ(lo + hi, glm::vec3(0)) << "triangle " << t / 3 << ": its box is not centred on the origin";
+        ASSERT_EQ(v[t] + v[t + 1] + v[t + 2], glm::vec3(0)) << "triangle " << t / 3 << ": its mean is not the origin";
+        ASSERT_GT(glm::length(glm::cross(v[t + 1] - v[t], v[t + 2] - v[t])), 0.0f) << "triangle " << t / 3;
     }
     const Bvh b = checked(v);
     EXPECT_LE(b.stats.leaf_count * 4, v.size() / 3 * 2) << "leaves stay small";

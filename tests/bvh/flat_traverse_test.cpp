@@ -14,7 +14,10 @@
 #include "cl/embedded_sources.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/shapes.hpp"
+#include "support/hit_agreement.hpp"
+#include "support/random_geometry.hpp"
 #include "support/test_device.hpp"
+#include "support/traversal_probes.hpp"
 
 using namespace clpath;
 
@@ -45,28 +48,16 @@ Objects some_objects(std::uint32_t seed) {
     return o;
 }
 
-std::vector<BatchRay> random_rays(std::size_t n, std::uint32_t seed, const std::vector<glm::vec3>& mesh) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> pos(-1.5f, 1.5f), dir(-1, 1), unit(0, 1);
-    std::uniform_int_distribution<std::size_t> pick(0, mesh.size() / 3 - 1);
-    std::vector<BatchRay> rays(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const glm::vec3 o(pos(rng), pos(rng), pos(rng));
-        glm::vec3 d(dir(rng), dir(rng), dir(rng));
-        if (i % 2) {  // aimed at a triangle, so every structure sees hits
-            const std::size_t t = pick(rng);
-            float a = unit(rng), b = unit(rng);
-            if (a + b > 1) a = 1 - a, b = 1 - b;
-            d = mesh[3 * t] + a * (mesh[3 * t + 1] - mesh[3 * t]) + b * (mesh[3 * t + 2] - mesh[3 * t]) - o;
-        }
-        if (i % 7 == 0) d = glm::vec3(i % 2 ? -0.0f : 0.0f, 0.0f, dir(rng) < 0 ? -1.0f : 1.0f);
-        d = glm::normalize(d);
-        store3(rays[i].o, o);
-        store3(rays[i].d, d);
-        rays[i].tmax = i % 3 == 0 ? 1.0f : INFINITY;  // some bounded rays, as shadow rays are
-        rays[i].src = std::uint32_t(i);
+// The shared random rays as batch rays; every third one bounded, as shadow rays are.
+std::vector<BatchRay> batch_rays(const std::vector<test::TestRay>& rays) {
+    std::vector<BatchRay> out(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        store3(out[i].o, rays[i].o);
+        store3(out[i].d, rays[i].d);
+        out[i].tmax = i % 3 == 0 ? 1.0f : INFINITY;
+        out[i].src = std::uint32_t(i);
     }
-    return rays;
+    return out;
 }
 
 struct DeviceHits {
@@ -135,7 +126,9 @@ TEST(FlatStructure, RejectsMismatchedObjectIds) {
 
 TEST(FlatTraversal, EqualsBruteForceAndTheBvh) {
     const Objects o = some_objects(2);
-    const auto rays = random_rays(20000, 3, o.verts);
+    const auto test_rays = test::random_rays(20000, 3, o.verts);
+    const auto rays = batch_rays(test_rays);
+    const auto tris = test::device_triangles(o.verts);
     const Bvh flat = build_flat(o.verts, o.object);
     const Bvh bvh = build_bvh(o.verts);
     const Bvh brute = one_leaf(o.verts);
@@ -143,11 +136,14 @@ TEST(FlatTraversal, EqualsBruteForceAndTheBvh) {
     const DeviceHits b = trace(bvh, Accel::Bvh, rays);
     std::size_t hits = 0, ties = 0;
     for (std::size_t i = 0; i < rays.size(); ++i) {
-        // Flat and BVH run the same float triangle test: the same closest distance exactly.
+        // Flat and BVH run the same float triangle test: the same closest
+        // distance exactly, and the same triangle but at an exact tie.
         ASSERT_EQ(f.closest[i].t, b.closest[i].t) << "ray " << i;
+        const std::int64_t fp = prim_of(flat, f.closest[i].tri), bp = prim_of(bvh, b.closest[i].tri);
+        ASSERT_TRUE(test::same_hit_or_exact_tie(tris, test_rays[i], int(fp), int(bp), f.closest[i].t))
+            << "ray " << i << ": flat hit triangle " << fp << ", the BVH " << bp;
         ASSERT_EQ(f.any[i] >= 0, b.any[i] >= 0) << "ray " << i;
         const CpuHit c = cpu_closest_hit(brute, rays[i]);
-        const std::int64_t fp = prim_of(flat, f.closest[i].tri);
         ASSERT_EQ(fp >= 0, c.prim >= 0) << "ray " << i;
         ASSERT_EQ(f.any[i] >= 0, cpu_any_hit(brute, rays[i]) >= 0) << "ray " << i;
         if (fp < 0) continue;
@@ -155,7 +151,14 @@ TEST(FlatTraversal, EqualsBruteForceAndTheBvh) {
         // The float distance is within the Woop test's rounding of the exact one (kTieTolerance bounds it).
         const double scale = c.t + std::max({std::abs(rays[i].o[0]), std::abs(rays[i].o[1]), std::abs(rays[i].o[2])});
         ASSERT_LE(std::abs(double(f.closest[i].t) - c.t), kTieTolerance * scale) << "ray " << i;
-        ties += fp != c.prim;  // another triangle at the same distance (a shared edge)
+        if (fp != c.prim) {
+            // Another triangle than the double-precision walk's (a shared
+            // edge): the float test must still hit the one reported alone at
+            // the reported distance, or it was mislabelled.
+            ++ties;
+            ASSERT_EQ(test::trace_brute({tris[std::size_t(fp)]}, test::packed({test_rays[i]})).t[0], f.closest[i].t)
+                << "ray " << i;
+        }
     }
     EXPECT_GT(hits, rays.size() / 4) << "the test should see hits";
     EXPECT_LT(ties, rays.size() / 1000) << "ties are rays through shared edges, rare";

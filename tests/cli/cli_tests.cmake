@@ -135,4 +135,11 @@ clpath_cli_test(render_flat_accel ARGS render --spp 1 --width 40 --height 32 --a
 clpath_cli_test(render_bad_accel FAIL ARGS render --spp 1 --accel kd OUTPUT "accel")
 clpath_scene_cli_test(render_closed_room ARGS render room:2000 --spp 1 --width 40 --height 32 -o ${CLI_OUT}/room.pfm
                       OUTPUT "triangles=1994 .*loaded 'room-1994' from room:2000")
+
+# --- export --format mitsuba: a Mitsuba 3 scene dictionary and one mesh per material ---
+clpath_cli_test(export.mitsuba ARGS export ${CMAKE_SOURCE_DIR}/scenes/cornell-thesis.json
+                ${CLI_OUT}/thesis-mitsuba.json --format mitsuba --width 32 --height 26
+                OUTPUT "wrote .*thesis-mitsuba.json and 7 meshes: Mitsuba 3, 196 triangles, 32x26, max depth 16")
+clpath_cli_test(export.unknown_format FAIL ARGS export ${CMAKE_SOURCE_DIR}/scenes/cornell-thesis.json
+                ${CLI_OUT}/thesis-pbrt.json --format pbrt OUTPUT "format" FORBID ${CLI_OUT}/thesis-pbrt.json)
 include(${CMAKE_CURRENT_SOURCE_DIR}/cli/usage_tests.cmake)

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "scene/shapes.hpp"
+#include "support/analytic_scenes.hpp"
 #include "support/render_helpers.hpp"
 #include "support/statistics.hpp"
 
@@ -16,16 +16,8 @@ using namespace clpath;
 namespace {
 
 Scene furnace(glm::vec3 albedo, glm::vec3 le) {
-    Scene s;
-    s.name = "furnace";
-    // Two-sided: the camera sees the sphere's inside.
-    const auto m = s.add_material("shell", emitter(le, true, albedo));
-    s.add_triangles(make_icosphere(3), m);
-    s.camera.eye = {0, 0, 0};
-    s.camera.target = {0.3f, 0.2f, 1};
-    s.camera.vfov_degrees = 90;
-    s.camera.width = 24;
-    s.camera.height = 24;
+    Scene s = test::furnace_sphere(albedo, le);
+    s.camera.width = s.camera.height = 24;
     return s;
 }
 
@@ -49,7 +41,7 @@ void check_furnace(std::uint32_t rr_rule, std::uint32_t max_depth, std::uint32_t
         const double a = albedo[c];
         // The thesis rule stops every path after max_depth - 1 bounces at most.
         const int bounces = rr_rule == CLP_RR_DEPTH ? int(max_depth) - 1 : int(max_depth);
-        const double expected = le[c] * (1 - std::pow(a, bounces + 1)) / (1 - a);
+        const double expected = test::furnace_radiance(le[c], a, bounces);
         const auto m = test::mean_error(test::channel(img, c));
         // Without roulette, cosine-weighted BSDF sampling gives every path the
         // same value (zero variance): then float rounding bounds the error, about

@@ -10,8 +10,10 @@
 
 #include "scene/builtin_scenes.hpp"
 #include "scene/shapes.hpp"
+#include "support/analytic_scenes.hpp"
 #include "support/image_agreement.hpp"
 #include "support/render_helpers.hpp"
+#include "support/render_runs.hpp"
 #include "support/statistics.hpp"
 
 using namespace clpath;
@@ -20,14 +22,10 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::vector<Image> runs(const Scene& scene, RenderSettings st, std::uint32_t spp, int k, std::uint32_t seed0) {
-    std::vector<Image> out;
-    for (int i = 0; i < k; ++i) {
-        st.seed = seed0 + std::uint32_t(i);
-        RenderStats stats;
-        out.push_back(test::render(scene, st, spp, &stats).linear);
-        EXPECT_EQ(stats.nonfinite, 0u);
-    }
+std::vector<Image> runs(const Scene& scene, const RenderSettings& st, std::uint32_t spp, int k, std::uint32_t seed0) {
+    std::uint64_t nonfinite = 0;
+    auto out = test::render_runs(scene, st, spp, k, seed0, &nonfinite);
+    EXPECT_EQ(nonfinite, 0u);
     return out;
 }
 
@@ -63,18 +61,12 @@ const double kZ = 3.89;
 }  // namespace
 
 // Albedo-1 diffuse and mirror surfaces, and glass, return exactly the sky's
-// radiance: every pixel's expectation is Le. (Float rounding of the path's
-// products adds a relative gamma(4 per bounce x 64 bounces).)
+// radiance: every pixel's expectation is Le.
 TEST(LightTransport, FurnaceConservesEnergy) {
     for (const Material& m : {diffuse(glm::vec3(1.0f)), mirror(glm::vec3(1.0f)), dielectric(1.5f)}) {
-        for (auto integrator : {CLP_INTEGRATOR_PATH, CLP_INTEGRATOR_PATH_BSDF}) {
-            const Scene s = sky_furnace(m, kSky, false);
-            for (int c = 0; c < 3; ++c) {
-                const auto e = furnace_mean(s, c, integrator);
-                EXPECT_NEAR(e.mean, kSky[c], kZ * e.std_error + kSky[c] * 256 * 0x1.0p-24)
-                    << "kind " << m.kind << " integrator " << integrator << " channel " << c;
-            }
-        }
+        SCOPED_TRACE("material kind " + std::to_string(m.kind));
+        for (auto integrator : test::kLightTransportIntegrators)
+            test::expect_sky_furnace(sky_furnace(m, kSky, false), 1.0, integrator, 5);
     }
 }
 
@@ -82,12 +74,7 @@ TEST(LightTransport, FurnaceConservesEnergy) {
 // compressed into the denser medium (the 1/eta^2 of each refraction).
 TEST(LightTransport, GlassSeenFromInside) {
     const float ior = 1.5f;
-    const Scene s = sky_furnace(dielectric(ior), kSky, true);
-    for (int c = 0; c < 3; ++c) {
-        const auto e = furnace_mean(s, c);
-        const double expected = kSky[c] * ior * ior;
-        EXPECT_NEAR(e.mean, expected, kZ * e.std_error + expected * 256 * 0x1.0p-24) << "channel " << c;
-    }
+    test::expect_sky_furnace(sky_furnace(dielectric(ior), kSky, true), ior * ior, CLP_INTEGRATOR_PATH, 5);
 }
 
 // A GGX conductor with F0 = 1 never returns more than it receives, and rough
@@ -156,7 +143,7 @@ TEST(LightTransport, DeltaLightsMatchClosedForm) {
 
 // Ambient occlusion: an open plane is exactly 1; next to a wall at distance x,
 // with rays of length D, the occluded share of the cosine-weighted hemisphere
-// is the measure of directions reaching the wall within D, by quadrature.
+// is the disk segment of test::ao_next_to_wall.
 TEST(LightTransport, AmbientOcclusionOpenPlaneAndCorner) {
     RenderSettings st;
     st.integrator = CLP_INTEGRATOR_AO;
@@ -166,28 +153,19 @@ TEST(LightTransport, AmbientOcclusionOpenPlaneAndCorner) {
         for (float v : img.rgb) ASSERT_EQ(v, 1.0f);
     }
     const double x = 0.25, D = 1.0;
-    Scene s = floor_scene(glm::vec3(0.5f), {float(x), 0, 0});
-    // A wall in the plane x = 0 facing +x, from the floor up.
-    const auto wall = s.add_material("wall", diffuse(glm::vec3(0.5f)));
-    s.add_triangles(transformed(make_plane(), shape_transform({0, 50, 0}, {0, 0, float(-kPi / 2)}, {100, 1, 100})),
-                    wall);
-    s.camera.eye = glm::vec3(float(x) + 2, 2, 0);  // from the open side, so the wall does not block the view
+    Scene s;
+    s.name = "corner";
+    test::add_floor_and_wall(s, s.add_material("grey", diffuse(glm::vec3(0.5f))));
+    // Narrow, from the open side (so the wall does not block the view): every
+    // sample lands within a hair of (x, 0, 0).
+    s.camera.eye = glm::vec3(float(x) + 2, 2, 0);
     s.camera.target = {float(x), 0, 0};
-    RenderStats stats;
-    const auto img = test::render(s, st, 256, &stats).linear;
-    // Quadrature: direction (sin t cos p, cos t, sin t sin p) about the floor's +y
-    // normal, pdf cos t sin t / pi; it meets the wall within D when it heads to
-    // -x and x / (sin t |cos p|) < D.
-    double blocked = 0;
-    const int n = 2000;
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-            const double t = (i + 0.5) / n * kPi / 2, p = (j + 0.5) / n * 2 * kPi;
-            const double dx = std::sin(t) * std::cos(p);
-            if (dx < 0 && x / -dx < D) blocked += std::cos(t) * std::sin(t) / kPi * (kPi / 2 / n) * (2 * kPi / n);
-        }
+    s.camera.vfov_degrees = 0.01f;
+    s.camera.width = s.camera.height = 8;
+    const auto img = test::render(s, st, 256).linear;
+    const double expected = test::ao_next_to_wall(x, D);
     const auto m = test::mean_error(test::channel(img, 0));
-    EXPECT_NEAR(m.mean, 1 - blocked, 4.4 * m.std_error + 1e-4) << "quadrature " << 1 - blocked;
+    EXPECT_NEAR(m.mean, expected, 4.4 * m.std_error + 1e-4) << "closed form " << expected;
 }
 
 namespace {

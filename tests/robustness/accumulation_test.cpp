@@ -54,19 +54,87 @@ TEST(Accumulation, MillionSamplesOfConstantRadianceStayExact) {
 }
 
 // Counter widths: the host's totals are 64-bit; the kernels' per-launch ray
-// counter is 32-bit and launches are sized below it; the sample index is
-// 32-bit and the renderer refuses to go past it (with a message).
-TEST(Accumulation, CounterWidths) {
-    static_assert(std::is_same_v<decltype(RenderStats::samples_per_pixel), std::uint64_t>);
-    static_assert(std::is_same_v<decltype(RenderStats::rays), std::uint64_t>);
-    static_assert(std::is_same_v<decltype(RenderStats::nonfinite), std::uint64_t>);
-    static_assert(sizeof(Counters::rays) == 4 && sizeof(FrameParams::first_sample) == 4);
-    static_assert(kMaxSamplesPerPixel == 0xffffffffull, "sample indices are 32-bit in the kernels");
-    // The ray bound per sample holds for the path integrator at its worst
-    // (every bounce hits, every bounce traces a shadow ray).
+// counter and sample index are 32-bit (a launch's rays are kept below 2^32 by
+// Accumulation.LaunchesKeepTheRayCounterBelow32Bits, the index by
+// Accumulation.SampleCountBeyondTheIndexIsRefused).
+static_assert(std::is_same_v<decltype(RenderStats::samples_per_pixel), std::uint64_t>);
+static_assert(std::is_same_v<decltype(RenderStats::rays), std::uint64_t>);
+static_assert(std::is_same_v<decltype(RenderStats::nonfinite), std::uint64_t>);
+static_assert(sizeof(Counters::rays) == 4 && sizeof(FrameParams::first_sample) == 4);
+static_assert(kMaxSamplesPerPixel == 0xffffffffull, "sample indices are 32-bit in the kernels");
+
+namespace {
+// A closed box with a point light inside, seen from inside: every camera ray
+// and every bounce hits, and the light is in front of every surface, so
+// next-event estimation traces a shadow ray at every bounce. Both tests below
+// render it at max_depth 1024 (one kernel build).
+Scene lit_closed_box() {
+    Scene s;
+    s.name = "lit-box";
+    s.add_triangles(transformed(make_box(), shape_transform({0, 0, 0}, {0, 0, 0}, glm::vec3(4))),
+                    s.add_material("grey", diffuse(glm::vec3(0.5f))));
+    PunctualLight bulb;
+    bulb.position = {0, -0.5f, 0.3f};
+    bulb.intensity = glm::vec3(1.0f);
+    s.lights = {bulb};
+    s.camera.eye = {0.1f, 0.2f, 0};
+    s.camera.target = {1, 0.3f, 0.2f};
+    s.camera.width = 16;
+    s.camera.height = 8;
+    return s;
+}
+
+RenderSettings deep_paths() {
     RenderSettings st;
     st.max_depth = 1024;
-    EXPECT_EQ(max_rays_per_sample(st), 2050u);
+    st.rr_rule = CLP_RR_NONE;
+    return st;
+}
+}  // namespace
+
+// The renderer sizes launches by max_rays_per_sample; the integrators at
+// their worst must stay within it. Measured: a path of max_depth bounces,
+// without roulette, traces its camera ray, one ray per bounce and one shadow
+// ray at every vertex but the last (2 max_depth + 1); ambient occlusion its
+// camera ray and one occlusion ray (2, the bound at max_depth 0).
+TEST(Accumulation, WorstCaseRaysPerSampleWithinTheBound) {
+    const Scene s = lit_closed_box();
+    const std::uint64_t samples = 16ull * 8 * 4;
+    RenderSettings st = deep_paths();
+    RenderStats stats;
+    test::render(s, st, 4, &stats);
+    EXPECT_EQ(stats.rays, samples * (2 * st.max_depth + 1));
+    EXPECT_LE(stats.rays, samples * max_rays_per_sample(st));
+    st.integrator = CLP_INTEGRATOR_AO;
+    st.max_depth = 0;
+    test::render(s, st, 4, &stats);
+    EXPECT_EQ(stats.rays, samples * 2);
+    EXPECT_LE(stats.rays, samples * max_rays_per_sample(st));
+}
+
+// Launches are sized so that no launch's 32-bit ray counter can pass 2^32 - 1
+// at max_rays_per_sample rays per sample: with max_depth 1024 (2050 rays per
+// sample) at most 2095138 pixel-samples per launch, whatever the time target
+// asks. Seen from outside the box, looking away, every sample traces one ray,
+// so the run is cheap, but the renderer must still split it as if every
+// sample took the worst path.
+TEST(Accumulation, LaunchesKeepTheRayCounterBelow32Bits) {
+    Scene s = lit_closed_box();
+    s.camera.eye = {0, 5, 0};
+    s.camera.target = {0, 6, 0};
+    s.camera.up = {0, 0, 1};
+    s.camera.width = s.camera.height = 64;
+    RenderSettings st = deep_paths();
+    st.target_launch_seconds = 1e9;  // the time target alone would take everything in one launch
+    const std::uint64_t pixels = 64 * 64, spp = 2048;
+    const std::uint64_t per_launch = 0xffffffffull / max_rays_per_sample(st);
+    RenderStats stats;
+    test::render(s, st, std::uint32_t(spp), &stats);
+    EXPECT_EQ(stats.rays, pixels * spp) << "one ray per sample, every one counted";
+    // The first launch measures the speed on one sample of every pixel; the
+    // rest must take no more than per_launch pixel-samples each.
+    const std::uint64_t rest = pixels * (spp - 1);
+    EXPECT_GE(stats.launches, 1 + (rest + per_launch - 1) / per_launch);
 }
 
 TEST(Accumulation, SampleCountBeyondTheIndexIsRefused) {

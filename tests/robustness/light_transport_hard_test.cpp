@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "scene/shapes.hpp"
+#include "support/analytic_scenes.hpp"
 #include "support/image_agreement.hpp"
 #include "support/render_helpers.hpp"
 #include "support/render_runs.hpp"
@@ -20,10 +21,15 @@ std::vector<glm::vec3> quad(glm::vec3 centre, glm::vec3 rotation, glm::vec3 size
     return transformed(make_plane(), shape_transform(centre, rotation, size));
 }
 
-std::size_t nonzero(const Image& img) {
-    std::size_t n = 0;
-    for (float v : img.rgb) n += v != 0.0f;
-    return n;
+// Both light-transport integrators (paths of up to 6 bounces) must render
+// exactly 0 everywhere.
+void expect_dark(const Scene& s, std::uint32_t spp) {
+    RenderSettings st;
+    st.max_depth = 6;
+    for (auto integrator : test::kLightTransportIntegrators) {
+        st.integrator = integrator;
+        test::expect_every_value(s, st, spp, 0.0f);
+    }
 }
 
 }  // namespace
@@ -40,22 +46,13 @@ TEST(LightTransportHard, EmitterFacingAwayLightsNothing) {
     s.camera.eye = {0.2f, 0.5f, -3};
     s.camera.target = {0, 0.2f, 0};
     s.camera.width = s.camera.height = 16;
-    for (auto integrator : {CLP_INTEGRATOR_PATH, CLP_INTEGRATOR_PATH_BSDF}) {
-        RenderSettings st;
-        st.integrator = integrator;
-        st.max_depth = 6;
-        RenderStats stats;
-        const auto img = test::render(s, st, 32, &stats).linear;
-        EXPECT_EQ(stats.nonfinite, 0u);
-        EXPECT_EQ(nonzero(img), 0u) << integrator_name(integrator);
-    }
+    expect_dark(s, 32);
     s.camera.eye = {0.1f, 3, 0.05f};  // above, looking down at the lamp's front
     s.camera.target = {0, 1, 0};
     s.camera.vfov_degrees = 10;
     RenderSettings st;
     st.max_depth = 6;
-    const auto img = test::render(s, st, 4).linear;
-    for (float v : img.rgb) ASSERT_EQ(v, 5.0f);
+    test::expect_every_value(s, st, 4, 5.0f);
 }
 
 // A 1e-2-wide lamp of radiance 4e4 (the power of a 1-unit lamp of 4) one
@@ -76,7 +73,7 @@ TEST(LightTransportHard, TinyBrightLight) {
     s.camera.vfov_degrees = 0.01f;  // every sample lands within 1e-4 of the point below the lamp
     s.camera.width = s.camera.height = 8;
     const double expected = rho / kPi * le * side * side * (1 - side * side / 3);
-    for (auto integrator : {CLP_INTEGRATOR_PATH, CLP_INTEGRATOR_PATH_BSDF}) {
+    for (auto integrator : test::kLightTransportIntegrators) {
         RenderSettings st;
         st.integrator = integrator;
         st.max_depth = 1;
@@ -115,23 +112,6 @@ Scene sky_with(const std::vector<std::pair<std::vector<glm::vec3>, Material>>& p
     return s;
 }
 
-void expect_furnace(const Scene& s, double factor, const char* what) {
-    for (auto integrator : {CLP_INTEGRATOR_PATH, CLP_INTEGRATOR_PATH_BSDF}) {
-        RenderSettings st;
-        st.integrator = integrator;
-        st.max_depth = 64;
-        RenderStats stats;
-        const auto img = test::render(s, st, 64, &stats).linear;
-        EXPECT_EQ(stats.nonfinite, 0u);
-        for (int c = 0; c < 3; ++c) {
-            const auto m = test::mean_error(test::channel(img, c));
-            const double expected = factor * s.environment.color[c];
-            // alpha 1e-4 per channel; plus float rounding along 64 bounces (gamma(4) each).
-            EXPECT_NEAR(m.mean, expected, 3.89 * m.std_error + expected * 256 * 0x1.0p-24)
-                << what << " " << integrator_name(integrator) << " channel " << c;
-        }
-    }
-}
 }  // namespace
 
 // Glass inside glass: a sphere of relative index 1.2 inside one of 1.5
@@ -145,7 +125,7 @@ TEST(LightTransportHard, GlassInsideGlassConservesEnergy) {
                               {transformed(make_icosphere(2), shape_transform({0.1f, 0, 0}, {0, 0, 0}, glm::vec3(0.5f))),
                                dielectric(1.2f)}},
                              {0, 0, -4});
-    expect_furnace(s, 1.0, "glass in glass");
+    for (auto integrator : test::kLightTransportIntegrators) test::expect_sky_furnace(s, 1.0, integrator, 0);
 }
 
 // A light inside glass: an emitting sphere inside a glass shell, on a floor.
@@ -204,7 +184,7 @@ TEST(LightTransportHard, TotalInternalReflection) {
         EXPECT_EQ(stats.nonfinite, 0u);
         const auto m = test::mean_error(test::channel(img, 0));
         if (deg > 41.81) {
-            EXPECT_EQ(nonzero(img), 0u) << deg << " degrees: total internal reflection lets nothing out";
+            EXPECT_EQ(test::nonzero(img), 0u) << deg << " degrees: total internal reflection lets nothing out";
             continue;
         }
         const double ci = std::cos(a), st2 = n * n * (1 - ci * ci), ct = std::sqrt(1 - st2);
@@ -231,13 +211,5 @@ TEST(LightTransportHard, CameraInsideClosedObjectSeesNothing) {
     s.camera.target = {1, 0.5f, 0.2f};
     s.camera.vfov_degrees = 90;
     s.camera.width = s.camera.height = 16;
-    for (auto integrator : {CLP_INTEGRATOR_PATH, CLP_INTEGRATOR_PATH_BSDF}) {
-        RenderSettings st;
-        st.integrator = integrator;
-        st.max_depth = 6;
-        RenderStats stats;
-        const auto img = test::render(s, st, 64, &stats).linear;
-        EXPECT_EQ(stats.nonfinite, 0u);
-        EXPECT_EQ(nonzero(img), 0u) << integrator_name(integrator);
-    }
+    expect_dark(s, 64);
 }

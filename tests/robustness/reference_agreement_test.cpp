@@ -33,7 +33,7 @@
 #include "render/kernel_features.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/scene_loader.hpp"
-#include "scene/shapes.hpp"
+#include "support/analytic_scenes.hpp"
 #include "support/image_agreement.hpp"
 #include "support/render_runs.hpp"
 
@@ -41,8 +41,6 @@ using namespace clpath;
 namespace fs = std::filesystem;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 fs::path repo_root() {
     for (fs::path p = fs::current_path(); !p.empty(); p = p.parent_path()) {
@@ -93,45 +91,29 @@ MakeReference image(const std::string& path, double samples) {
     };
 }
 
-// White furnace: a closed emitting sphere of albedo a, Le per channel; every
-// pixel's expectation is Le (1 - a^(n+1)) / (1 - a) for paths of n bounces.
-Scene furnace_scene() {
-    Scene s;
-    s.name = "furnace";
-    s.add_triangles(make_icosphere(3), s.add_material("shell", emitter(glm::vec3(1, 0.5f, 0.25f), true,
-                                                                       glm::vec3(0.5f, 0.8f, 0.9f))));
-    s.camera.eye = {0, 0, 0};
-    s.camera.target = {0.3f, 0.2f, 1};
-    s.camera.vfov_degrees = 90;
-    return s;
-}
+// White furnace: a closed emitting sphere of albedo a, Le per channel.
+const glm::vec3 kFurnaceAlbedo(0.5f, 0.8f, 0.9f), kFurnaceLe(1, 0.5f, 0.25f);
+Scene furnace_scene() { return test::furnace_sphere(kFurnaceAlbedo, kFurnaceLe); }
 MakeReference furnace_exact() {
     return [](const Scene& s, const std::vector<Image>&, std::uint32_t) {
-        const glm::vec3 a(0.5f, 0.8f, 0.9f), le(1, 0.5f, 0.25f);
         Image img;
         img.width = s.camera.width;
         img.height = s.camera.height;
         const int n = 64;  // max_depth of the entry
         for (int i = 0; i < img.width * img.height; ++i)
-            for (int c = 0; c < 3; ++c) img.rgb.push_back(float(le[c] * (1 - std::pow(a[c], n + 1)) / (1 - a[c])));
+            for (int c = 0; c < 3; ++c) img.rgb.push_back(float(test::furnace_radiance(kFurnaceLe[c], kFurnaceAlbedo[c], n)));
         return test::reference_exact("analytic furnace", img);
     };
 }
 
-// Ambient occlusion of a floor next to a wall (the plane x = 0), seen
-// straight down: a pixel's expectation is the mean over its footprint of
-// AO(x) = 1 - blocked(x / D), where blocked(c) = (acos c - c sqrt(1 - c^2)) / pi
-// is the share of the cosine-weighted hemisphere whose rays reach the wall
-// within D (Malley: the directions' projection on the floor is uniform on the
-// unit disk; the rays that reach the wall are the disk's segment beyond c).
+// Ambient occlusion of a floor next to a wall (test::add_floor_and_wall),
+// seen straight down: a pixel's expectation is the mean over its footprint
+// of test::ao_next_to_wall.
 constexpr double kAoD = 1.0;
 Scene ao_corner_scene() {
     Scene s;
     s.name = "ao-corner";
-    const auto grey = s.add_material("grey", diffuse(glm::vec3(0.5f)));
-    s.add_triangles(transformed(make_plane(), shape_transform({50, 0, 0}, {0, 0, 0}, {100, 1, 100})), grey);
-    s.add_triangles(transformed(make_plane(), shape_transform({0, 50, 0}, {0, 0, float(-kPi / 2)}, {100, 1, 100})),
-                    grey);
+    test::add_floor_and_wall(s, s.add_material("grey", diffuse(glm::vec3(0.5f))));
     s.camera.eye = {0.8f, 1.5f, 0};
     s.camera.target = {0.8f, 0, 0};
     s.camera.up = {0, 0, 1};
@@ -142,11 +124,6 @@ MakeReference ao_corner_exact() {
     return [](const Scene& s, const std::vector<Image>& runs, std::uint32_t spp) {
         const CameraData cd = camera_data(s.camera);
         const glm::dvec3 eye(load3(cd.eye)), f(load3(cd.forward)), r(load3(cd.right)), u(load3(cd.up));
-        auto ao = [](double x) {
-            const double c = x / kAoD;
-            if (c >= 1) return 1.0;
-            return 1 - (std::acos(c) - c * std::sqrt(1 - c * c)) / kPi;
-        };
         Image img;
         img.width = s.camera.width;
         img.height = s.camera.height;
@@ -160,7 +137,7 @@ MakeReference ao_corner_exact() {
                         const double y = 1 - 2 * (py + (j + 0.5) / sub) / img.height;
                         const glm::dvec3 d = f + x * r + y * u;
                         const glm::dvec3 p = eye + d * (eye.y / -d.y);
-                        sum += ao(p.x);
+                        sum += test::ao_next_to_wall(p.x, kAoD);
                     }
                 const double v = sum / (sub * sub);
                 for (int c = 0; c < 3; ++c) img.rgb.push_back(float(v));
@@ -189,7 +166,9 @@ const std::vector<Entry>& references() {
         // scene exported by `clpath export` (benchmarks/references/). Per
         // pixel, 256 clpath samples resolve a few percent; the image means
         // differ by +0.25 % (benchmarks/references/agreement.txt), which this
-        // test cannot see and which is not explained yet.
+        // test cannot see. Mitsuba 3 (the primary references,
+        // tests/references/) puts that bias on Cycles' side: Cycles is 0.23 %
+        // darker than Mitsuba away from the lamp, clpath agrees with Mitsuba.
         {"cornell-classic: Blender Cycles", "scenes/cornell-classic.json", 128, 128, 16,
          image("benchmarks/references/cornell-classic-cycles.exr", 4096)},
         {"glass in glass: NEE+MIS vs BSDF sampling", "scenes/hard/glass-in-glass.json", 32, 24, 16, bsdf_sampling(),
@@ -203,6 +182,14 @@ const std::vector<Entry>& references() {
          }},
     };
     return entries;
+}
+
+// Entries are found by name, never by position: a control must keep testing
+// the entry it names when entries are added.
+const Entry& reference_named(const std::string& name) {
+    for (const Entry& e : references())
+        if (e.name == name) return e;
+    throw std::invalid_argument("no reference entry named '" + name + "'");
 }
 
 Scene entry_scene(const Entry& e) {
@@ -238,10 +225,12 @@ TEST(ReferenceAgreement, EveryEntryAgrees) {
     }
 }
 
-// The same test must reject a wrong image: the furnace with one bounce fewer.
+// The same test must reject a wrong image: the furnace cut at 3 bounces
+// instead of 64 (the 0.9-albedo channel then lacks 0.9^4 = 66 % of its light).
 TEST(ReferenceAgreement, RejectsAWrongImage) {
-    const Entry& e = references()[2];
+    const Entry& e = reference_named("white furnace: analytic");
     const Scene s = entry_scene(e);
+    ASSERT_EQ(s.name, "furnace") << "the control must render the analytic furnace";
     RenderSettings st = entry_settings(e, s);
     st.max_depth = 3;
     const auto runs = test::render_runs(s, st, e.spp, 16, 100);

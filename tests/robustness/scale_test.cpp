@@ -25,6 +25,15 @@ using namespace clpath;
 
 namespace {
 
+// Ambient occlusion (rays of length 1) exactly 1 everywhere: nothing the
+// camera sees shadows itself.
+void expect_unoccluded(const Scene& s, std::uint32_t spp) {
+    RenderSettings st;
+    st.integrator = CLP_INTEGRATOR_AO;
+    st.ao_distance = 1.0f;
+    test::expect_every_value(s, st, spp, 1.0f);
+}
+
 std::vector<glm::vec3> box_at(glm::vec3 centre, glm::vec3 size) {
     return transformed(make_box(), shape_transform(centre, {0, 0, 0}, size));
 }
@@ -169,12 +178,7 @@ TEST(Scale, ParallelSurfacesATinyGapApart) {
         ASSERT_EQ(albedo.rgb[i], 1.0f) << "pixel " << i / 3;
         ASSERT_EQ(albedo.rgb[i + 1], 0.0f) << "pixel " << i / 3 << " saw the floor through the plate";
     }
-    st.integrator = CLP_INTEGRATOR_AO;
-    st.ao_distance = 1.0f;
-    RenderStats stats;
-    const auto ao = test::render(s, st, 64, &stats).linear;
-    EXPECT_EQ(stats.nonfinite, 0u);
-    for (std::size_t i = 0; i < ao.rgb.size(); ++i) ASSERT_EQ(ao.rgb[i], 1.0f) << "value " << i;
+    expect_unoccluded(s, 64);
 }
 
 // Two overlapping squares in one tilted plane, triangulated differently, so
@@ -207,12 +211,7 @@ TEST(Scale, CoplanarOverlappingTriangles) {
         mixed += albedo.rgb[i] > 0 && albedo.rgb[i + 1] > 0;
     }
     EXPECT_GT(mixed, 0u) << "the view should include the overlap";
-    st.integrator = CLP_INTEGRATOR_AO;
-    st.ao_distance = 1.0f;
-    RenderStats stats;
-    const auto ao = test::render(s, st, 64, &stats).linear;
-    EXPECT_EQ(stats.nonfinite, 0u);
-    for (std::size_t i = 0; i < ao.rgb.size(); ++i) ASSERT_EQ(ao.rgb[i], 1.0f) << "value " << i;
+    expect_unoccluded(s, 64);
 }
 
 // A flat floor tessellated into thousands of triangles (every ray leaves near
@@ -231,13 +230,5 @@ TEST(Scale, TessellatedPlaneDoesNotShadowItself) {
     s.camera.target = {0.1f, 0.2f, 0.3f};
     s.camera.vfov_degrees = 30;
     s.camera.width = s.camera.height = 24;
-    RenderSettings st;
-    st.integrator = CLP_INTEGRATOR_AO;
-    st.ao_distance = 1.0f;
-    RenderStats stats;
-    const auto ao = test::render(s, st, 256, &stats).linear;
-    EXPECT_EQ(stats.nonfinite, 0u);
-    std::size_t below = 0;
-    for (float v : ao.rgb) below += v != 1.0f;
-    EXPECT_EQ(below, 0u) << "of " << ao.rgb.size() << " values";
+    expect_unoccluded(s, 256);
 }

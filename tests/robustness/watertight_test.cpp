@@ -6,7 +6,7 @@
 // vertices, and the slab test's +-0 handling keeps the boxes closed too).
 //
 // CI traces about 1.2 million rays; CLPATH_ROBUSTNESS_FULL=1 traces the
-// issue's 10^7 and more (4 million per mesh, 12 million in all).
+// 10^7 rays the robustness suite aims at, and more (4 million per mesh, 12 million in all).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,0 +1,30 @@
+#pragma once
+// A render's running sums on disk, so that a long render can be stopped and
+// continued: the exact film (render/exact_film.hpp), the chunks it holds, and
+// what it is a render of. Continuing adds the missing chunks, and since chunk
+// totals add exactly, the final image is the same bits as an uninterrupted
+// render of the same seed and sample count.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/chunks.hpp"
+#include "render/exact_film.hpp"
+
+namespace clpath {
+
+struct Checkpoint {
+    std::uint64_t render_hash = 0;  // scene and settings (render/render_hash.hpp)
+    ChunkPlan plan;
+    std::vector<std::uint64_t> done_chunks;
+    ExactFilm film;
+};
+
+// Written to a temporary file beside path and renamed over it, so a crash
+// mid-write leaves the previous checkpoint whole.
+void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);
+// Throws clpath::Error naming the file for anything unreadable, truncated or
+// not a clpath checkpoint.
+Checkpoint read_checkpoint(const std::string& path);
+
+}  // namespace clpath

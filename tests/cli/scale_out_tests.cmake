@@ -1,0 +1,61 @@
+# Rendering over several devices and MPI ranks, and interrupted renders: the
+# image is the same bits however the work was shared, and bad use fails cleanly.
+set(SCALE_OUT ${CMAKE_BINARY_DIR}/scale-out-test)
+file(MAKE_DIRECTORY ${SCALE_OUT})
+# PoCL shows two CPU devices of one thread each.
+set(TWO_POCL_DEVICES "POCL_DEVICES=pthread pthread;POCL_MAX_PTHREAD_COUNT=1")
+set(SMALL render --spp 12 --chunk 2 --width 40 --height 32 --seed 9 -q)
+string(REPLACE ";" " " SMALL_ARGS "${SMALL}")
+
+function(clpath_same_image_test name cmds outs env)
+    add_test(NAME cli.scale.${name}
+             COMMAND ${CMAKE_COMMAND} "-DCMDS=${cmds}" "-DOUTS=${outs}" -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/same_image.cmake)
+    set_tests_properties(cli.scale.${name} PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV};${env}" TIMEOUT 300)
+endfunction()
+
+set(C $<TARGET_FILE:clpath>)
+# Like clpath_cli_test, for a command that is not clpath itself (mpirun).
+function(clpath_command_test name)
+    cmake_parse_arguments(T "FAIL" "OUTPUT;FORBID" "CMD" ${ARGN})
+    add_test(NAME cli.scale.${name}
+             COMMAND ${CMAKE_COMMAND} "-DCMD=${T_CMD}" -DEXPECT_FAIL=${T_FAIL} "-DEXPECT_OUTPUT=${T_OUTPUT}"
+                     -DFORBID_FILE=${T_FORBID} -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/expect.cmake)
+    set_tests_properties(cli.scale.${name} PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 300)
+endfunction()
+clpath_same_image_test(two_devices_same_bits
+    "${C} ${SMALL_ARGS} --device 0 -o ${SCALE_OUT}/one.pfm|${C} ${SMALL_ARGS} --device all -o ${SCALE_OUT}/all.pfm|${C} ${SMALL_ARGS} --device 1,0 -o ${SCALE_OUT}/list.pfm"
+    "${SCALE_OUT}/one.pfm;${SCALE_OUT}/all.pfm;${SCALE_OUT}/list.pfm" "${TWO_POCL_DEVICES}")
+
+clpath_cli_test(scale_device_twice FAIL ARGS render --spp 1 --device 0,0 -o ${SCALE_OUT}/twice.pfm
+                OUTPUT "device \\[0\\].*named twice" FORBID ${SCALE_OUT}/twice.pfm)
+clpath_cli_test(scale_device_missing_in_list FAIL ARGS render --spp 1 --device 0,9 -o ${SCALE_OUT}/missing.pfm
+                OUTPUT "9: no device with that index" FORBID ${SCALE_OUT}/missing.pfm)
+clpath_cli_test(scale_resume_missing FAIL ARGS render --spp 4 --resume ${SCALE_OUT}/no.ckpt -o ${SCALE_OUT}/r.pfm
+                OUTPUT "no.ckpt: cannot open the checkpoint" FORBID ${SCALE_OUT}/r.pfm)
+
+add_test(NAME cli.scale.interrupt_checkpoint_resume
+         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/interrupt_resume.sh $<TARGET_FILE:clpath> ${SCALE_OUT}/interrupt)
+set_tests_properties(cli.scale.interrupt_checkpoint_resume PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 600)
+
+if(CLPATH_WITH_MPI)
+    # Open MPI refuses root without these, and CI runs as root; two ranks on
+    # one 2-core machine need --oversubscribe.
+    set(MPIRUN ${MPIEXEC_EXECUTABLE} --allow-run-as-root --oversubscribe)
+    string(REPLACE ";" " " MPIRUN_ARGS "${MPIRUN}")
+    clpath_same_image_test(mpi_two_ranks_same_bits
+        "${C} ${SMALL_ARGS} -o ${SCALE_OUT}/rank1.pfm|${MPIRUN_ARGS} -n 2 ${C} ${SMALL_ARGS} -o ${SCALE_OUT}/ranks2.pfm"
+        "${SCALE_OUT}/rank1.pfm;${SCALE_OUT}/ranks2.pfm" "")
+    # A rank with another scene, one that fails, one that dies: a clear error, no image.
+    clpath_command_test(mpi_ranks_disagree FAIL OUTPUT "ranks disagree about the scene" FORBID ${SCALE_OUT}/disagree.pfm
+        CMD ${MPIRUN} -n 1 ${C} ${SMALL} -o ${SCALE_OUT}/disagree.pfm : -n 1 ${C} ${SMALL} --max-depth 3 -o ${SCALE_OUT}/disagree.pfm)
+    clpath_command_test(mpi_rank_fails FAIL OUTPUT "rank 1 .*9: no device with that index" FORBID ${SCALE_OUT}/fails.pfm
+        CMD ${MPIRUN} -n 1 ${C} ${SMALL} -o ${SCALE_OUT}/fails.pfm : -n 1 ${C} ${SMALL} --device 9 -o ${SCALE_OUT}/fails.pfm)
+    clpath_command_test(mpi_rank_dies FAIL OUTPUT "exited on signal 9" FORBID ${SCALE_OUT}/dies.pfm
+        CMD ${MPIRUN} -n 1 ${C} render --spp 100000 --width 40 --height 32 -q -o ${SCALE_OUT}/dies.pfm
+            : -n 1 ${CMAKE_CURRENT_SOURCE_DIR}/cli/dying_rank.sh)
+    # A convergence study over ranks: every configuration is measured once and reported by rank 0.
+    clpath_command_test(mpi_bench_convergence
+        OUTPUT "spread over 2 MPI ranks.*\\| thesis .*\\| cosine .*\\| no-rr .*\\| throughput-rr .*\\| nee-mis .*\\| bvh .*\\| clpath "
+        CMD ${MPIRUN} -n 2 ${C} bench convergence ${CMAKE_SOURCE_DIR}/scenes/cornell-classic.json
+            --reference ${CMAKE_SOURCE_DIR}/benchmarks/references/cornell-classic-cycles.exr --quick --max-spp 2)
+endif()

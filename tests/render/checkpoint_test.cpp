@@ -1,0 +1,65 @@
+// Checkpoint files: what is written is read back exactly; anything else is refused by name.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "render/checkpoint.hpp"
+#include "util/error.hpp"
+
+namespace clpath {
+namespace {
+
+std::string temp_path(const std::string& name) {
+    return (std::filesystem::temp_directory_path() / ("clpath_ckpt_" + name)).string();
+}
+
+Checkpoint sample_checkpoint() {
+    Checkpoint c;
+    c.render_hash = 0x1234567890abcdefull;
+    c.plan = {100, 8};
+    c.done_chunks = {0, 2, 5};
+    c.film = ExactFilm(3, 2);
+    for (std::size_t i = 0; i < c.film.sums().size(); ++i) c.film.sums()[i] = (Fixed128(i) << 70) - 12345;
+    c.film.set_samples_per_pixel(24);
+    return c;
+}
+
+TEST(Checkpoint, RoundTripsExactly) {
+    const std::string path = temp_path("roundtrip");
+    const Checkpoint c = sample_checkpoint();
+    write_checkpoint(path, c);
+    const Checkpoint r = read_checkpoint(path);
+    EXPECT_EQ(r.render_hash, c.render_hash);
+    EXPECT_EQ(r.plan.total_samples, 100u);
+    EXPECT_EQ(r.plan.chunk_samples, 8u);
+    EXPECT_EQ(r.done_chunks, c.done_chunks);
+    EXPECT_EQ(r.film.sums(), c.film.sums());
+    EXPECT_EQ(r.film.samples_per_pixel(), 24u);
+    EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+    std::filesystem::remove(path);
+}
+
+TEST(Checkpoint, RefusesBrokenFiles) {
+    const std::string path = temp_path("broken");
+    write_checkpoint(path, sample_checkpoint());
+    const auto size = std::filesystem::file_size(path);
+    std::filesystem::resize_file(path, size - 1);
+    EXPECT_THROW(read_checkpoint(path), Error);
+    { std::ofstream(path, std::ios::binary) << "not a checkpoint at all, just text"; }
+    try {
+        read_checkpoint(path);
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos);
+    }
+    Checkpoint wrong = sample_checkpoint();
+    wrong.film.set_samples_per_pixel(23);  // does not match its chunks
+    write_checkpoint(path, wrong);
+    EXPECT_THROW(read_checkpoint(path), Error);
+    std::filesystem::remove(path);
+    EXPECT_THROW(read_checkpoint(path), Error);  // missing
+}
+
+}  // namespace
+}  // namespace clpath

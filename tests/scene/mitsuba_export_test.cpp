@@ -1,0 +1,133 @@
+// clpath export --format mitsuba: the scene dictionary names a BSDF for every
+// material kind, an emitter for every light kind, the camera and the depth
+// Mitsuba needs, and the meshes hold every triangle once (a two-sided
+// emitter's twice: its back copy reversed and behind it). That Mitsuba
+// renders the same images is tests/references/mitsuba_agreement_test.cpp.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <array>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/mitsuba_export.hpp"
+#include "scene/scene_loader.hpp"
+#include "scene/memory_files.hpp"
+#include "util/error.hpp"
+
+namespace clpath {
+namespace {
+
+using json = nlohmann::json;
+
+std::string repo_file(const std::string& rel) { return test::scenes_dir() + "/../" + rel; }
+
+struct Parsed {
+    json doc;
+    std::map<std::string, std::vector<std::array<glm::dvec3, 3>>> tris;  // per mesh file
+};
+
+Parsed parse(const MitsubaExport& e) {
+    Parsed p;
+    p.doc = json::parse(e.json);
+    for (const auto& [name, text] : e.meshes) {
+        std::vector<glm::dvec3> v;
+        std::istringstream in(text);
+        std::string line;
+        while (std::getline(in, line)) {
+            std::istringstream l(line);
+            std::string tag;
+            l >> tag;
+            if (tag == "v") {
+                glm::dvec3 q;
+                l >> q.x >> q.y >> q.z;
+                v.push_back(q);
+            } else if (tag == "f") {
+                std::array<glm::dvec3, 3> t;
+                for (auto& c : t) {
+                    std::string idx;
+                    l >> idx;
+                    c = v.at(std::stoul(idx) - 1);
+                }
+                p.tris[name].push_back(t);
+            }
+        }
+    }
+    return p;
+}
+
+TEST(MitsubaExport, CornellThesisMaterialsDepthAndCamera) {
+    const Scene s = load_scene(test::scenes_dir() + "/cornell-thesis.json");
+    const Parsed p = parse(export_mitsuba_scene(s, "thesis", "test"));
+    const json& sc = p.doc["scene"];
+    EXPECT_EQ(sc["integrator"]["type"], "path");
+    EXPECT_EQ(sc["integrator"]["max_depth"].get<int>(), int(s.render.max_depth) + 1);
+    EXPECT_EQ(sc["bsdf-default"]["bsdf"]["type"], "diffuse");
+    EXPECT_EQ(sc["bsdf-glass"]["type"], "dielectric");
+    EXPECT_NEAR(sc["bsdf-glass"]["int_ior"].get<double>(), 1.51714, 1e-6);
+    EXPECT_EQ(sc["bsdf-glossy"]["bsdf"]["type"], "principled");
+    EXPECT_EQ(sc["bsdf-glossy"]["bsdf"]["metallic"].get<double>(), 1.0);
+    // The camera sits at the origin; the target keeps its offset from the eye.
+    const json& cam = sc["sensor"]["clpath_look_at"];
+    EXPECT_EQ(cam["origin"], json::array({0.0, 0.0, 0.0}));
+    EXPECT_NEAR(cam["target"][2].get<double>(), double(s.camera.target.z) - double(s.camera.eye.z), 1e-7);
+    EXPECT_EQ(sc["sensor"]["fov_axis"], "y");
+    EXPECT_EQ(sc["sensor"]["film"]["rfilter"]["type"], "box");
+    // Every triangle once, and the two-sided lamp twice.
+    std::size_t n = 0;
+    for (const auto& [name, t] : p.tris) n += t.size();
+    std::size_t lamp = p.tris.at("thesis-emissive.obj").size();
+    EXPECT_EQ(n, s.triangle_count() + lamp);
+    ASSERT_TRUE(sc.contains("shape-emissive-back"));
+    EXPECT_EQ(sc["shape-emissive-back"]["emitter"]["type"], "area");
+    // The back copy faces the other way and lies behind the front.
+    const auto& front = p.tris.at("thesis-emissive.obj");
+    const auto& back = p.tris.at("thesis-emissive-back.obj");
+    ASSERT_EQ(front.size(), back.size());
+    for (std::size_t i = 0; i < front.size(); ++i) {
+        const glm::dvec3 nf = glm::normalize(glm::cross(front[i][1] - front[i][0], front[i][2] - front[i][0]));
+        const glm::dvec3 nb = glm::normalize(glm::cross(back[i][1] - back[i][0], back[i][2] - back[i][0]));
+        EXPECT_NEAR(glm::dot(nf, nb), -1.0, 1e-6);
+        const double behind = glm::dot(back[i][0] - front[i][0], nf);
+        EXPECT_LT(behind, 0.0);
+        EXPECT_GT(behind, -1e-4);
+    }
+}
+
+TEST(MitsubaExport, EveryLightKindAndRoughGlass) {
+    Scene s = load_scene(repo_file("benchmarks/references/scenes/punctual-lights.json"));
+    const json lights = parse(export_mitsuba_scene(s, "p", "test")).doc["scene"];
+    EXPECT_EQ(lights["light-0"]["type"], "point");
+    EXPECT_EQ(lights["light-1"]["type"], "spot");
+    EXPECT_EQ(lights["light-1"]["cutoff_angle"], lights["light-1"]["beam_width"]);  // Mitsuba's falloff off
+    EXPECT_EQ(lights["light-1"]["clpath_spot_falloff"]["inner_degrees"].get<double>(), 20.0);
+    EXPECT_EQ(lights["light-2"]["type"], "directional");
+    EXPECT_EQ(lights["bsdf-mirror"]["bsdf"]["type"], "conductor");
+    EXPECT_EQ(lights["bsdf-mirror"]["bsdf"]["material"], "none");
+    // The point light moves with the scene (camera at the origin).
+    EXPECT_NEAR(lights["light-0"]["position"][1].get<double>(), 1.4 - 1.6, 1e-6);
+
+    Scene g = load_scene(repo_file("benchmarks/references/scenes/rough-glass-sky.json"));
+    const json sky = parse(export_mitsuba_scene(g, "g", "test")).doc["scene"];
+    EXPECT_EQ(sky["bsdf-frost"]["type"], "roughdielectric");
+    EXPECT_NEAR(sky["bsdf-frost"]["alpha"].get<double>(), 0.09, 1e-6);  // roughness^2
+    EXPECT_EQ(sky["environment"]["type"], "envmap");
+    EXPECT_TRUE(std::filesystem::path(sky["environment"]["filename"].get<std::string>()).is_absolute());
+    EXPECT_EQ(sky["environment"]["clpath_env_rotation_degrees"].get<double>(), 30.0);
+    EXPECT_EQ(sky["shape-floor"]["face_normals"], true);
+
+    Scene m = load_scene(repo_file("benchmarks/references/scenes/metals.json"));
+    const json metals = parse(export_mitsuba_scene(m, "m", "test")).doc["scene"];
+    EXPECT_EQ(metals["environment"]["type"], "constant");
+    EXPECT_EQ(metals["shape-chalk"]["face_normals"], false);  // shading normals travel as vn
+}
+
+TEST(MitsubaExport, RefusesAnEmptyScene) {
+    Scene s;
+    EXPECT_THROW(export_mitsuba_scene(s, "x", "test"), Error);
+}
+
+}  // namespace
+}  // namespace clpath
