@@ -4,7 +4,9 @@
 # devices, runs every test program on the GPU, renders the default scene on
 # the GPU and on the machine's CPU through PoCL, and times a longer GPU render.
 # Logs and images go to $OUT.
-# Usage: benchmarks/gpu/run_gpu_checks.sh BUILD_DIR   (a -DCLPATH_WITH_OIIO=OFF -DCLPATH_WITH_VIEWER=OFF build)
+# Usage: benchmarks/gpu/run_gpu_checks.sh BUILD_DIR
+#   (a -DCLPATH_WITH_OIIO=OFF -DCLPATH_WITH_VIEWER=OFF -DCLPATH_WITH_EMBREE=OFF build: bench rays then
+#   prints each kernel's private memory and preferred work-group multiple, without the Embree baseline)
 set -u
 B=${1:-build-gpu}
 OUT=${OUT:-/tmp/clpath-gpu-out}

@@ -93,8 +93,8 @@ fi
   echo "- secondary batches hold one ray per primary hit (misses make none)."
   echo "- $rays_s s in all. Full output: log.txt; every run: all.csv."
   echo
-  echo "| scene | triangles | structure | batch | rays | hits | Mrays/s (mean) | CPU check: rays | identical % | ties | at the origin | mismatched |"
-  echo "|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"
-  tail -n +2 "$OUT/rays/all.csv" | awk -F, '{printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $2, $3, $4, $5, $9, $10, $14, $15, $16, $17, $18, $19}'
+  echo "| scene | triangles | structure | batch | rays | hits | Mrays/s (mean) | CPU check: rays | identical % | ties | at the origin | mismatched | Embree Mrays/s | clpath/Embree | Embree mismatched |"
+  echo "|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+  tail -n +2 "$OUT/rays/all.csv" | awk -F, '{printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $2, $3, $4, $5, $9, $10, $14, $15, $16, $17, $18, $19, $22, $23, $24}'
 } > "$OUT/rays/README.md"
 echo "run.sh: wrote $OUT/scaling and $OUT/rays"

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "bench/cpu_traversal.hpp"
+#include "bench/embree_baseline.hpp"
 #include "cl/embedded_sources.hpp"
 #include "cl/program.hpp"
 #include "util/error.hpp"
@@ -106,6 +107,53 @@ BatchAgreement check_any(const Bvh& reference, const std::vector<BatchRay>& rays
         }
     }
     return a;
+}
+
+// Embree's answers in the device's form (Hit.tri indexes the leaf-ordered
+// triangles), so check_closest and check_any judge both the same way.
+std::vector<std::uint32_t> leaf_index_of_prim(const std::vector<TriVerts>& tris) {
+    std::vector<std::uint32_t> at(tris.size());
+    for (std::size_t i = 0; i < tris.size(); ++i) at[tris[i].prim] = std::uint32_t(i);
+    return at;
+}
+
+void take_timing(EmbreeBatch& e, const EmbreeTiming& t) {
+    e.ran = true;
+    e.best_ms = t.best_ms;
+    e.mean_ms = t.mean_ms;
+    e.mrays_per_s = t.mrays_per_s;
+}
+
+EmbreeBatch embree_closest(EmbreeBaseline& embree, const Bvh& reference, const std::vector<TriVerts>& tris,
+                           const std::vector<std::uint32_t>& leaf_of, const std::vector<BatchRay>& rays,
+                           const RayBenchOptions& o) {
+    std::vector<std::int64_t> prim;
+    std::vector<float> t;
+    EmbreeBatch e;
+    take_timing(e, embree.closest(rays, o.launches, prim, t));
+    std::vector<Hit> hits(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        hits[i].t = t[i];
+        hits[i].b1 = hits[i].b2 = 0;
+        hits[i].tri = prim[i] < 0 ? -1 : int(leaf_of[std::size_t(prim[i])]);
+        e.hits += prim[i] >= 0;
+    }
+    e.agreement = check_closest(reference, tris, rays, hits, o.check);
+    return e;
+}
+
+EmbreeBatch embree_any(EmbreeBaseline& embree, const Bvh& reference, const std::vector<BatchRay>& rays,
+                       const RayBenchOptions& o) {
+    std::vector<char> occluded;
+    EmbreeBatch e;
+    take_timing(e, embree.any(rays, o.launches, occluded));
+    std::vector<int> occluder(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        occluder[i] = occluded[i] ? 1 : -1;
+        e.hits += occluded[i] != 0;
+    }
+    e.agreement = check_any(reference, rays, occluder, o.check);
+    return e;
 }
 
 void finish_timing(BatchResult& b) {
@@ -213,6 +261,20 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     Kernel make_secondary = ctx.kernel(built.program.get(), "batch_secondary_rays");
     Kernel closest = ctx.kernel(built.program.get(), "batch_trace_closest");
     Kernel any = ctx.kernel(built.program.get(), "batch_trace_any");
+    for (const Kernel* k : {&make_primary, &make_secondary, &closest, &any})
+        res.kernels.push_back(kernel_info(*k, ctx.device().device));
+
+    // The CPU baseline traces the same rays after the device, each batch in turn.
+    std::unique_ptr<EmbreeBaseline> embree;
+    std::vector<std::uint32_t> leaf_of;
+    if (o.embree) {
+        embree = make_embree_baseline(scene.vertices);
+        if (embree) {
+            res.embree = embree->describe();
+            leaf_of = leaf_index_of_prim(structure.triangles);
+            say("CPU baseline: " + res.embree);
+        }
+    }
 
     // One warm-up launch, then the timed ones; every launch writes the same results.
     auto time_batch = [&](BatchResult& b, Kernel& k) {
@@ -241,6 +303,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
         if (primary_result[i].tri >= 0) hit_list.push_back(std::uint32_t(i));
     prim.hits = hit_list.size();
     prim.agreement = check_closest(reference, structure.triangles, primary_rays, primary_result, o.check);
+    if (embree) prim.embree = embree_closest(*embree, reference, structure.triangles, leaf_of, primary_rays, o);
     res.batches.push_back(prim);
     if (!hit_list.empty()) ctx.write(src, hit_list.data(), hit_list.size() * sizeof(std::uint32_t));
     const std::uint32_t m = std::uint32_t(hit_list.size());
@@ -266,6 +329,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
         ctx.read(secondary_hits, occluder.data(), m * sizeof(int));
         for (int x : occluder) shadow.hits += x >= 0;
         shadow.agreement = check_any(reference, rays, occluder, o.check);
+        if (embree) shadow.embree = embree_any(*embree, reference, rays, o);
     }
     res.batches.push_back(shadow);
 
@@ -283,6 +347,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
         ctx.read(secondary_hits, hits);
         for (const auto& h : hits) diffuse.hits += h.tri >= 0;
         diffuse.agreement = check_closest(reference, structure.triangles, rays, hits, o.check);
+        if (embree) diffuse.embree = embree_closest(*embree, reference, structure.triangles, leaf_of, rays, o);
     }
     res.batches.push_back(diffuse);
     return res;
@@ -297,6 +362,18 @@ std::string describe(const BatchResult& b) {
                   b.name.c_str(), b.rays, b.hits, b.mean_ms, b.best_ms, b.mrays_per_s, a.checked,
                   a.identical_percent(), a.ties, a.near_origin, a.mismatched, a.max_dt);
     return a.first_mismatch.empty() ? std::string(buf) : std::string(buf) + "\n  first mismatch: " + a.first_mismatch;
+}
+
+std::string describe_embree(const BatchResult& b) {
+    const EmbreeBatch& e = b.embree;
+    const BatchAgreement& a = e.agreement;
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "  Embree: %zu hit, %.3f ms mean / %.3f ms best, %.2f Mrays/s, clpath/Embree %.3f; CPU check: %zu "
+                  "rays, %.4f %% identical hits, %zu ties, %zu at the origin, %zu mismatched",
+                  e.hits, e.mean_ms, e.best_ms, e.mrays_per_s, b.over_embree(), a.checked, a.identical_percent(), a.ties,
+                  a.near_origin, a.mismatched);
+    return a.first_mismatch.empty() ? std::string(buf) : std::string(buf) + "\n  Embree's first mismatch: " + a.first_mismatch;
 }
 
 }  // namespace clpath

@@ -18,6 +18,7 @@
 
 #include "bvh/accel.hpp"
 #include "cl/context.hpp"
+#include "cl/kernel_info.hpp"
 #include "scene/scene.hpp"
 
 namespace clpath {
@@ -31,6 +32,7 @@ struct RayBenchOptions {
     std::size_t check = std::size_t(1) << 18;  // rays per batch checked on the CPU (evenly spaced); 0: all
     std::uint32_t seed = 0;                    // diffuse directions
     BvhBuildOptions bvh;
+    bool embree = true;  // trace every batch with Embree too, when built with it (bench/embree_baseline.hpp)
 };
 
 // How a batch's device results compare with the CPU reference.
@@ -61,6 +63,16 @@ constexpr double kTieTolerance = 1e-5;
 // the scale above) are counted apart from mismatches.
 constexpr double kNearOrigin = 1e-4;
 
+// The same batch traced by Embree on the host's cores (wall-clock time of
+// each pass), checked against the CPU reference like the device.
+struct EmbreeBatch {
+    bool ran = false;
+    std::size_t hits = 0;
+    double best_ms = 0, mean_ms = 0;
+    double mrays_per_s = 0;
+    BatchAgreement agreement;
+};
+
 struct BatchResult {
     std::string name;  // primary, shadow, diffuse
     std::size_t rays = 0, hits = 0;
@@ -68,6 +80,9 @@ struct BatchResult {
     double best_ms = 0, mean_ms = 0;
     double mrays_per_s = 0;  // rays / mean kernel time
     BatchAgreement agreement;
+    EmbreeBatch embree;
+    // The device's Mrays/s over Embree's; 0 when Embree did not run.
+    double over_embree() const { return embree.ran && embree.mrays_per_s > 0 ? mrays_per_s / embree.mrays_per_s : 0; }
 };
 
 struct RayBenchResult {
@@ -79,6 +94,8 @@ struct RayBenchResult {
     glm::vec3 light{0};
     std::string device;
     std::vector<BatchResult> batches;  // primary, shadow, diffuse
+    std::vector<KernelInfo> kernels;   // the batch kernels on this device
+    std::string embree;                // the baseline's description; empty when it did not run
 };
 
 // The batch kernels' program: these root files (program_source) with these options.
@@ -98,5 +115,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
 
 // "primary: 2457600 rays (786432 hit), 12.3 ms, 199.8 Mrays/s; CPU check: 262144 rays, 100.000 % identical, ..."
 std::string describe(const BatchResult& batch);
+// "  Embree: 40.1 ms mean / 39.8 ms best, 61.29 Mrays/s, clpath/Embree 0.39; CPU check: ..."
+std::string describe_embree(const BatchResult& batch);
 
 }  // namespace clpath

@@ -4,8 +4,9 @@
 #include <chrono>
 #include <limits>
 #include <map>
-#include <stdexcept>
 #include <string>
+
+#include "util/error.hpp"
 
 namespace clpath {
 namespace {
@@ -37,11 +38,11 @@ Bvh build_flat(const std::vector<glm::vec3>& vertices, const std::vector<std::ui
                float traversal_cost) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::size_t n = vertices.size() / 3;
-    if (n == 0) throw std::invalid_argument("cannot build a flat structure over no triangles");
-    if (n > 0x7fffffffu) throw std::invalid_argument("more than 2^31 triangles");
+    if (n == 0) throw Error("flat structure: no triangles");
+    if (n > 0x7fffffffu) throw Error("flat structure: " + std::to_string(n) + " triangles; at most 2^31 - 1 fit the node layout");
     if (triangle_object.size() != n)
-        throw std::invalid_argument("flat structure: " + std::to_string(triangle_object.size()) + " object ids for " +
-                                    std::to_string(n) + " triangles");
+        throw Error("flat structure: " + std::to_string(triangle_object.size()) + " object ids for " +
+                    std::to_string(n) + " triangles");
     // Objects in order of first appearance; triangles grouped by object, in
     // scene order within one (a counting sort, so it is stable and O(n)).
     std::map<std::uint32_t, std::uint32_t> slot_of;

@@ -20,8 +20,8 @@ namespace clpath {
 // first appearance. Stats: node_count = records, leaf_count = objects,
 // sah_cost = every record visited by every ray that enters the scene
 // (traversal_cost each) plus each object's triangles weighted by its box's
-// area, normalised like the BVH's. Throws std::invalid_argument for no
-// triangles or mismatched sizes.
+// area, normalised like the BVH's. Throws clpath::Error for no triangles or
+// mismatched sizes.
 Bvh build_flat(const std::vector<glm::vec3>& vertices, const std::vector<std::uint32_t>& triangle_object,
                float traversal_cost = 1.0f);
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/embree_baseline.hpp"
 #include "bench/ray_batches.hpp"
 #include "bench/report_files.hpp"
 #include "cl/context.hpp"
@@ -26,6 +27,7 @@ struct RaysOptions {
     std::size_t workgroup = 64, check = std::size_t(1) << 18;
     std::uint32_t seed = 0;
     bool quick = false;
+    bool no_embree = false;
 };
 
 // "1,2.5,-3" -> {1, 2.5, -3}; what names the option in messages.
@@ -52,6 +54,7 @@ int run_rays(const RaysOptions& o) {
     bo.accel = parse_accel(o.accel);
     bo.check = o.quick ? 0 : o.check;
     bo.seed = o.seed;
+    bo.embree = !o.no_embree;
     if (!o.light.empty()) {
         const auto l = parse_numbers(o.light, "--light");
         if (l.size() != 3) throw Error("--light '" + o.light + "': expected x,y,z");
@@ -86,15 +89,19 @@ int run_rays(const RaysOptions& o) {
                 r.scene.c_str(), r.triangles, accel_name(r.accel), r.structure.node_count, r.structure.sah_cost,
                 double(r.structure_bytes) / double(r.triangles), r.light.x, r.light.y, r.light.z, bo.workgroup,
                 r.device.c_str());
+    for (const auto& k : r.kernels) std::printf("kernel %s\n", describe(k).c_str());
+    if (!r.embree.empty()) std::printf("CPU baseline: %s\n", r.embree.c_str());
     bool agree = true;
     for (const auto& b : r.batches) {
         std::printf("%s\n", describe(b).c_str());
+        if (b.embree.ran) std::printf("%s\n", describe_embree(b).c_str());
         agree = agree && b.agreement.agrees();
     }
     if (!o.csv.empty()) {
         std::ostringstream csv;
         csv << "device,scene,triangles,accel,batch,width,height,workgroup,rays,hits,launches,mean_ms,best_ms,"
-               "mrays_per_s,checked,identical_percent,ties,near_origin,mismatched,max_dt\n";
+               "mrays_per_s,checked,identical_percent,ties,near_origin,mismatched,max_dt,embree_mean_ms,"
+               "embree_mrays_per_s,clpath_over_embree,embree_mismatched\n";
         for (const auto& b : r.batches) {
             char line[512];
             std::snprintf(line, sizeof line, ",%zu,%s,%s,%d,%d,%zu,%zu,%zu,%zu,%.4f,%.4f,%.3f,%zu,%.4f,%zu,%zu,%zu,%.3g\n",
@@ -102,7 +109,14 @@ int run_rays(const RaysOptions& o) {
                           b.hits, b.launch_ms.size(), b.mean_ms, b.best_ms, b.mrays_per_s, b.agreement.checked,
                           b.agreement.identical_percent(), b.agreement.ties, b.agreement.near_origin, b.agreement.mismatched,
                           b.agreement.max_dt);
-            csv << csv_field(r.device) << "," << csv_field(r.scene) << line;
+            // Embree's columns stay empty when it did not run (built without it, or --no-embree).
+            char embree[160] = ",,,,";
+            if (b.embree.ran)
+                std::snprintf(embree, sizeof embree, ",%.4f,%.3f,%.4f,%zu", b.embree.mean_ms, b.embree.mrays_per_s,
+                              b.over_embree(), b.embree.agreement.mismatched);
+            std::string row = line;
+            row.insert(row.size() - 1, embree);  // before the newline
+            csv << csv_field(r.device) << "," << csv_field(r.scene) << row;
         }
         write_report_file(o.csv, csv.str());
         std::fprintf(stderr, "clpath: wrote %s\n", o.csv.c_str());
@@ -148,6 +162,9 @@ Command add_bench_rays_command(CLI::App& bench) {
     cmd->add_option("--csv", o->csv, "Write the results as CSV to this file");
     cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
     cmd->add_flag("--quick", o->quick, "32x24 pixels, one timed launch, every ray checked (for CI)");
+    cmd->add_flag("--no-embree", o->no_embree,
+                  embree_built_in() ? "Skip the Embree CPU baseline (by default it traces every batch too)"
+                                    : "Skip the Embree CPU baseline (this build has none)");
     return [o] { return run_rays(*o); };
 }
 

@@ -7,6 +7,11 @@
 #include "util/error.hpp"
 
 namespace clpath::jsonf {
+
+std::string quote(const std::string& s) {
+    return nlohmann::json(s).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 namespace {
 
 std::string format_number(double v) {

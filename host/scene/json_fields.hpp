@@ -17,6 +17,10 @@ namespace clpath::jsonf {
 // Ordered: materials keep the order the file gives them, and messages follow it.
 using json = nlohmann::ordered_json;
 
+// s as a JSON string literal, quoted and escaped (invalid UTF-8 replaced),
+// for the files clpath writes.
+std::string quote(const std::string& s);
+
 // Parses text as JSON; a syntax error is reported as "FILE:LINE:COLUMN: ...",
 // a key given twice in one object as "FILE: path: ...".
 json parse(const std::string& text, const std::string& file);

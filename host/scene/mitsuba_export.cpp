@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <set>
 
+#include "scene/json_fields.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -23,15 +24,6 @@ std::string jpos(glm::dvec3 v) {
 }
 std::string rgb(glm::vec3 c) { return "{\"type\": \"rgb\", \"value\": " + jvec(c) + "}"; }
 
-std::string json_string(const std::string& s) {
-    std::string out = "\"";
-    for (char c : s) {
-        if (c == '"' || c == '\\') out += '\\';
-        if (static_cast<unsigned char>(c) < 0x20) continue;
-        out += c;
-    }
-    return out + "\"";
-}
 
 // File-name-safe and unique: letters, digits, '_', '-'; others become '_'.
 std::string safe_name(const std::string& name, std::set<std::string>& taken) {
@@ -105,10 +97,10 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
         out.json += "    \"bsdf-" + name + "\": " + bsdf(m) + ",\n";
         if (m.kind == CLP_MAT_CONDUCTOR && double(m.roughness) * m.roughness >= 1e-3)
             notes += std::string(notes.empty() ? "" : ", ") +
-                     json_string("'" + name + "': Smith masking separable (Mitsuba) vs height-correlated (clpath)");
+                     jsonf::quote("'" + name + "': Smith masking separable (Mitsuba) vs height-correlated (clpath)");
         if (m.kind == CLP_MAT_DIELECTRIC && double(m.roughness) * m.roughness >= 1e-3)
             notes += std::string(notes.empty() ? "" : ", ") +
-                     json_string("'" + name + "': Smith masking separable (Mitsuba) vs height-correlated (clpath)");
+                     jsonf::quote("'" + name + "': Smith masking separable (Mitsuba) vs height-correlated (clpath)");
         for (int side = 0; side < (two_sided ? 2 : 1); ++side) {
             const std::string file = stem + "-" + name + (side ? "-back" : "") + ".obj";
             std::string obj = "# clpath export of '" + scene.name + "' from " + source + ", material '" + name + "'" +
@@ -144,7 +136,7 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
             }
             out.meshes.emplace_back(file, obj + faces);
             shapes += "    \"shape-" + name + (side ? "-back" : "") + "\": {\"type\": \"obj\", \"filename\": " +
-                      json_string(file) + ", \"face_normals\": " + (normals ? "false" : "true") +
+                      jsonf::quote(file) + ", \"face_normals\": " + (normals ? "false" : "true") +
                       ", \"bsdf\": {\"type\": \"ref\", \"id\": \"bsdf-" + name + "\"}" +
                       (emits(m) ? ", \"emitter\": {\"type\": \"area\", \"radiance\": " + rgb(load3(m.emission)) + "}"
                                 : "") +
@@ -183,7 +175,7 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
         // rotation about +y; Mitsuba: u = atan2(x, -z) / 2pi of to_world^-1 d.
         // The script builds to_world from these and looks texels up without
         // filtering, as clpath does.
-        out.json += "    \"environment\": {\"type\": \"envmap\", \"filename\": " + json_string(std::filesystem::absolute(env.image).string()) +
+        out.json += "    \"environment\": {\"type\": \"envmap\", \"filename\": " + jsonf::quote(std::filesystem::absolute(env.image).string()) +
                     ", \"scale\": " + num(env.scale) + ", \"clpath_env_rotation_degrees\": " +
                     num(env.rotation_degrees) + "},\n";
     } else if (env.emits()) {
@@ -195,7 +187,7 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
     // clpath's max_depth counts scattering events, Mitsuba's path segments:
     // depth d in clpath ends with the segment d + 1.
     const std::string head =
-        "{\n  \"clpath\": {\"source\": " + json_string(source) + ", \"name\": " + json_string(scene.name) +
+        "{\n  \"clpath\": {\"source\": " + jsonf::quote(source) + ", \"name\": " + jsonf::quote(scene.name) +
         ", \"width\": " + std::to_string(c.width) + ", \"height\": " + std::to_string(c.height) +
         ", \"spp\": " + std::to_string(r.spp) + ", \"max_depth\": " + std::to_string(r.max_depth) +
         ", \"shift\": " + jpos(-shift) + ", \"notes\": [" + notes + "]},\n  \"scene\": {\n    \"type\": \"scene\",\n" +

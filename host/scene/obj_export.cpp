@@ -7,6 +7,7 @@
 #include <set>
 #include <tuple>
 
+#include "scene/json_fields.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -21,15 +22,6 @@ std::string num(float v) {
 std::string vec(glm::vec3 v, const char* sep = " ") { return num(v.x) + sep + num(v.y) + sep + num(v.z); }
 std::string json_vec(glm::vec3 v) { return "[" + vec(v, ", ") + "]"; }
 
-std::string json_string(const std::string& s) {
-    std::string out = "\"";
-    for (char c : s) {
-        if (c == '"' || c == '\\') out += '\\';
-        if (static_cast<unsigned char>(c) < 0x20) continue;
-        out += c;
-    }
-    return out + "\"";
-}
 
 const char* kind_name(std::uint32_t kind) {
     switch (kind) {
@@ -118,25 +110,25 @@ ObjExport export_obj_scene(const Scene& scene, const std::string& stem, const st
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];
         if (!used[i] || !emits(m) || !(m.flags & CLP_MATF_TWO_SIDED_EMISSION)) continue;
-        materials += std::string(materials.empty() ? "" : ",\n") + "    " + json_string(names[i]) +
+        materials += std::string(materials.empty() ? "" : ",\n") + "    " + jsonf::quote(names[i]) +
                      ": { \"type\": \"emitter\", \"emission\": " + json_vec(load3(m.emission)) +
                      ", \"albedo\": " + json_vec(load3(m.albedo)) + ", \"two_sided\": true }";
-        mapping += std::string(mapping.empty() ? "" : ", ") + json_string(names[i]) + ": " + json_string(names[i]);
+        mapping += std::string(mapping.empty() ? "" : ", ") + jsonf::quote(names[i]) + ": " + jsonf::quote(names[i]);
     }
     const Camera& c = scene.camera;
     const SceneRenderDefaults& r = scene.render;
-    out.json = "{\n  \"name\": " + json_string(scene.name) + ",\n  \"description\": " +
-               json_string("Exported by clpath export from " + source +
+    out.json = "{\n  \"name\": " + jsonf::quote(scene.name) + ",\n  \"description\": " +
+               jsonf::quote("Exported by clpath export from " + source +
                            ": the mesh and its MTL materials (Kd reflectance, Ke radiance, one-sided), with the "
                            "camera, the render settings and the two-sided emitters here.") +
                ",\n  \"camera\": { \"eye\": " + json_vec(c.eye) + ", \"target\": " + json_vec(c.target) +
                ", \"up\": " + json_vec(c.up) + ", \"vfov\": " + num(c.vfov_degrees) + ", \"resolution\": [" +
                std::to_string(c.width) + ", " + std::to_string(c.height) + "] },\n  \"render\": { \"spp\": " +
                std::to_string(r.spp) + ", \"max_depth\": " + std::to_string(r.max_depth) +
-               ", \"russian_roulette\": " + json_string(r.russian_roulette) + ", \"integrator\": " +
-               json_string(r.integrator) + ", \"seed\": " + std::to_string(r.seed) + " },\n";
+               ", \"russian_roulette\": " + jsonf::quote(r.russian_roulette) + ", \"integrator\": " +
+               jsonf::quote(r.integrator) + ", \"seed\": " + std::to_string(r.seed) + " },\n";
     if (!materials.empty()) out.json += "  \"materials\": {\n" + materials + "\n  },\n";
-    out.json += "  \"objects\": [\n    { \"type\": \"mesh\", \"file\": " + json_string(stem + ".obj") +
+    out.json += "  \"objects\": [\n    { \"type\": \"mesh\", \"file\": " + jsonf::quote(stem + ".obj") +
                 ", \"smooth\": false" + (mapping.empty() ? "" : ", \"materials\": { " + mapping + " }") + " }\n  ]";
     if (scene.environment.emits())
         out.json += ",\n  \"environment\": { \"color\": " + json_vec(scene.environment.color) + " }";

@@ -3,11 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
+#include <string>
 #include <random>
 
 #include "bvh/bvh.hpp"
 #include "scene/shapes.hpp"
 #include "support/random_geometry.hpp"
+#include "util/error.hpp"
 
 using namespace clpath;
 
@@ -80,13 +83,20 @@ TEST(BvhBuild, IdenticalAndDegenerateTriangles) {
 
 TEST(BvhBuild, DeterministicAcrossThreadCounts) {
     const auto v = soup(300000, 5, 0.02f);
-    BvhBuildOptions one, four;
+    // Large enough for the top levels' parallel binning and partitions; 3
+    // threads cut the records into uneven chunks.
+    BvhBuildOptions one;
     one.threads = 1;
-    four.threads = 4;
-    const Bvh a = checked(v, one), b = checked(v, four);
-    ASSERT_EQ(a.nodes.size(), b.nodes.size());
-    EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)), 0);
-    EXPECT_EQ(std::memcmp(a.triangles.data(), b.triangles.data(), a.triangles.size() * sizeof(TriVerts)), 0);
+    const Bvh a = checked(v, one);
+    for (int threads : {2, 3, 4}) {
+        BvhBuildOptions o;
+        o.threads = threads;
+        const Bvh b = checked(v, o);
+        ASSERT_EQ(a.nodes.size(), b.nodes.size()) << threads << " threads";
+        EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)), 0) << threads;
+        EXPECT_EQ(std::memcmp(a.triangles.data(), b.triangles.data(), a.triangles.size() * sizeof(TriVerts)), 0)
+            << threads << " threads";
+    }
 }
 
 TEST(BvhBuild, SahBeatsMedianSplits) {
@@ -98,4 +108,35 @@ TEST(BvhBuild, SahBeatsMedianSplits) {
     EXPECT_LT(checked(v, fine).stats.sah_cost, checked(v, coarse).stats.sah_cost);
 }
 
-TEST(BvhBuild, EmptyInputIsAnError) { EXPECT_THROW(build_bvh({}), std::invalid_argument); }
+// Bad input gets the project's error type, whose message names what is wrong.
+void expect_error(const std::vector<glm::vec3>& v, const BvhBuildOptions& o, const std::string& words) {
+    try {
+        build_bvh(v, o);
+        ADD_FAILURE() << "no error; expected one naming '" << words << "'";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+}
+
+TEST(BvhBuild, EmptyInputIsAnError) { expect_error({}, {}, "no triangles"); }
+
+TEST(BvhBuild, BadInputIsAnError) {
+    auto v = soup(100, 7);
+    expect_error({v[0], v[1]}, {}, "2 vertices is not a whole number of triangles");
+    BvhBuildOptions o;
+    o.bins = 1;
+    expect_error(v, o, "bins must be in [2, 256], got 1");
+    o = {};
+    o.max_leaf_size = 65;
+    expect_error(v, o, "leaf size must be in [1, 64], got 65");
+    o = {};
+    o.traversal_cost = -1;
+    expect_error(v, o, "traversal cost");
+    v[3 * 42 + 1].y = std::numeric_limits<float>::quiet_NaN();
+    expect_error(v, {}, "triangle 42 has a non-finite vertex");
+    v[3 * 42 + 1].y = 0;
+    v[3 * 97 + 2].z = -std::numeric_limits<float>::infinity();
+    expect_error(v, {}, "triangle 97 has a non-finite vertex");
+    v[3 * 97 + 2].z = 3e38f;  // huge but finite: no error
+    EXPECT_NO_THROW(checked(v));
+}

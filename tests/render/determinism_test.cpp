@@ -8,12 +8,7 @@
 using namespace clpath;
 
 namespace {
-Scene small_cornell() {
-    Scene s = cornell_thesis_scene();
-    s.camera.width = 40;
-    s.camera.height = 32;
-    return s;
-}
+Scene small_cornell() { return test::small_cornell(40, 32); }
 }  // namespace
 
 TEST(Determinism, SameSeedSameImage) {

@@ -8,17 +8,13 @@
 #include "render/device_farm.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "support/image_agreement.hpp"
+#include "support/render_helpers.hpp"
 
 using namespace clpath;
 
 namespace {
 
-Scene small_cornell() {
-    Scene s = cornell_thesis_scene();
-    s.camera.width = 32;
-    s.camera.height = 24;
-    return s;
-}
+Scene small_cornell() { return test::small_cornell(32, 24); }
 
 std::vector<DeviceInfo> devices(std::size_t n) {
     std::vector<DeviceInfo> all = list_devices();

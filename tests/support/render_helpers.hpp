@@ -4,10 +4,19 @@
 
 #include "image/image.hpp"
 #include "render/renderer.hpp"
+#include "scene/builtin_scenes.hpp"
 #include "scene/scene.hpp"
 #include "support/test_device.hpp"
 
 namespace clpath::test {
+
+// The default scene (the thesis renderer's room, all diffuse) at a test's size.
+inline Scene small_cornell(int width, int height) {
+    Scene s = cornell_thesis_scene();
+    s.camera.width = width;
+    s.camera.height = height;
+    return s;
+}
 
 inline RenderedImage render(const Scene& scene, const RenderSettings& settings, std::uint32_t spp,
                             RenderStats* stats = nullptr) {

@@ -1,0 +1,557 @@
+#include "bvh/binned_builder.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <system_error>
+#include <thread>
+
+#include "bvh/build_simd.hpp"
+#include "util/error.hpp"
+
+namespace clpath::bvh_build {
+
+void fork_join(int threads, const std::function<void(int)>& f) {
+    if (threads <= 1) {
+        f(0);
+        return;
+    }
+    std::vector<std::thread> pool;
+    pool.reserve(std::size_t(threads - 1));
+    try {
+        for (int t = 1; t < threads; ++t) pool.emplace_back(f, t);
+    } catch (const std::system_error& e) {
+        for (auto& th : pool) th.join();
+        throw Error(std::string("BVH build: cannot start a thread (") + e.what() + ")");
+    }
+    f(0);
+    for (auto& th : pool) th.join();
+}
+
+namespace {
+
+constexpr int kMaxBins = 256;
+// Nodes over at least this many triangles are binned and partitioned by all
+// threads; smaller subtrees are built whole, one per thread. A size, not a
+// share of the threads, so the tree is the same for every thread count.
+constexpr std::uint32_t kBigNode = 1u << 14;
+
+// Per axis, the bins' boxes and counts, and the list of bins the SAH sweep
+// visits: all of them, or for a node over fewer triangles than bins only the
+// occupied ones (the same choice: the sweep's costs between two occupied bins
+// do not change, and it keeps the first of equal costs).
+struct Bins {
+    Box4 box[3][kMaxBins];
+    std::uint32_t count[3][kMaxBins];
+    std::uint8_t list[3][kMaxBins];
+    int listed[3] = {0, 0, 0};
+    bool sparse = false, used = false;
+
+    Bins() { clear_all(kMaxBins); }
+    void clear_all(int bins) {
+        for (int a = 0; a < 3; ++a)
+            for (int k = 0; k < bins; ++k) {
+                box[a][k] = Box4{};
+                count[a][k] = 0;
+            }
+    }
+    void list_all(int bins) {
+        for (int a = 0; a < 3; ++a) {
+            for (int k = 0; k < bins; ++k) list[a][k] = std::uint8_t(k);
+            listed[a] = bins;
+        }
+        sparse = false;
+        used = true;
+    }
+    // Back to all empty: only the listed bins were touched.
+    void reset(int bins) {
+        if (!used) return;
+        if (!sparse) {
+            clear_all(bins);
+        } else {
+            for (int a = 0; a < 3; ++a)
+                for (int j = 0; j < listed[a]; ++j) {
+                    box[a][list[a][j]] = Box4{};
+                    count[a][list[a][j]] = 0;
+                }
+        }
+        listed[0] = listed[1] = listed[2] = 0;
+        sparse = used = false;
+    }
+    void merge(const Bins& o, int bins) {
+        for (int a = 0; a < 3; ++a)
+            for (int k = 0; k < bins; ++k) {
+                box[a][k].grow(o.box[a][k]);
+                count[a][k] += o.count[a][k];
+            }
+    }
+};
+
+// A subtree still to build: records [begin, end), in the scatter array when in_tmp.
+struct Range {
+    Box4 box, cbox;  // of the triangles' boxes, of their centroids
+    std::uint32_t begin, end, slot;
+    int depth;  // of this node, root = 1
+    bool in_tmp;
+};
+
+// What a node does: become a leaf, split at an SAH bin boundary, or split at the median.
+struct Decision {
+    enum Kind { Leaf, Sah, Median } kind = Leaf;
+    int axis = 0, bin = 0;
+};
+
+inline F4 centroid(F4 lo, F4 hi) {
+    const F4 half = splat(0.5f);
+    return lo * half + hi * half;  // not (lo + hi) / 2: no overflow near the float range's ends
+}
+
+// The mapping from a centroid to its bin on each axis (Wald 2007: equal slabs
+// of the node's centroid bounds). Binning and partitioning both use it, so a
+// partition puts exactly the binned counts on each side.
+struct BinMap {
+    F4 lo, scale, top;
+    BinMap(const Box4& cbox, int bins) {
+        alignas(16) float e[4];
+        store4(e, cbox.hi - cbox.lo);
+        const float b = float(bins);
+        lo = cbox.lo;
+        scale = set4(b / std::max(e[0], 1e-30f), b / std::max(e[1], 1e-30f), b / std::max(e[2], 1e-30f), 0);
+        top = splat(float(bins - 1));
+    }
+    void operator()(F4 c, std::int32_t idx[4]) const { bin_index4((c - lo) * scale, top, idx); }
+};
+
+void bin_refs(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, Bins& bins) {
+    for (std::uint32_t i = begin; i < end; ++i) {
+        const F4 lo = load3(r[i].lo), hi = load3(r[i].hi);
+        alignas(16) std::int32_t idx[4];
+        map(centroid(lo, hi), idx);
+        for (int a = 0; a < 3; ++a) {
+            bins.box[a][idx[a]].grow(lo, hi);
+            ++bins.count[a][idx[a]];
+        }
+    }
+}
+
+// bin_refs for fewer triangles than bins, listing the occupied bins in order.
+void bin_refs_sparse(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, Bins& bins) {
+    bins.sparse = bins.used = true;
+    for (std::uint32_t i = begin; i < end; ++i) {
+        const F4 lo = load3(r[i].lo), hi = load3(r[i].hi);
+        alignas(16) std::int32_t idx[4];
+        map(centroid(lo, hi), idx);
+        for (int a = 0; a < 3; ++a) {
+            const int k = idx[a];
+            bins.box[a][k].grow(lo, hi);
+            if (bins.count[a][k]++) continue;
+            // First in this bin: insert k into the sorted list.
+            std::uint8_t* l = bins.list[a];
+            int j = bins.listed[a]++;
+            for (; j > 0 && l[j - 1] > k; --j) l[j] = l[j - 1];
+            l[j] = std::uint8_t(k);
+        }
+    }
+}
+
+class Builder {
+public:
+    Builder(const BvhBuildOptions& opt, Ref* main, Ref* tmp, TreeNode* nodes)
+        : opt_(opt), main_(main), tmp_(tmp), nodes_(nodes) {}
+
+    std::atomic<std::size_t> leaves{0};
+    std::vector<Subtree> subtrees;
+    std::size_t top_interior = 0;
+
+    void build(const Range& root) {
+        std::vector<Range> tasks, level, next;
+        (root.end - root.begin >= kBigNode ? level : tasks).push_back(root);
+        while (!level.empty()) {
+            big_level(level, next, tasks);
+            level.swap(next);
+            next.clear();
+        }
+        // Largest first, so the last task to start is a small one.
+        std::sort(tasks.begin(), tasks.end(), [](const Range& a, const Range& b) {
+            return a.end - a.begin > b.end - b.begin || (a.end - a.begin == b.end - b.begin && a.begin < b.begin);
+        });
+        std::atomic<std::size_t> next_task{0};
+        const int workers = int(std::min<std::size_t>(std::size_t(opt_.threads), tasks.size()));
+        std::vector<std::unique_ptr<Bins>> worker_bins(std::size_t(std::max(workers, 1)));
+        for (auto& b : worker_bins) b = std::make_unique<Bins>();
+        subtrees.resize(tasks.size());
+        fork_join(workers, [&](int w) {
+            for (std::size_t i; (i = next_task.fetch_add(1)) < tasks.size();)
+                subtrees[i] = {tasks[i].slot, tasks[i].begin, tasks[i].depth, subtree(tasks[i], *worker_bins[w])};
+        });
+        std::sort(subtrees.begin(), subtrees.end(), [](const Subtree& a, const Subtree& b) { return a.begin < b.begin; });
+    }
+
+private:
+    const BvhBuildOptions& opt_;
+    Ref* main_;
+    Ref* tmp_;
+    TreeNode* nodes_;
+
+    Ref* refs(const Range& r) const { return r.in_tmp ? tmp_ : main_; }
+
+    void leaf(const Range& r) {
+        TreeNode& n = nodes_[r.slot];
+        store_box(n, r.box);
+        n.first = r.begin;
+        n.count = r.end - r.begin;
+        n.right = 0;
+    }
+
+    void interior(const Range& r, std::uint32_t mid) {
+        TreeNode& n = nodes_[r.slot];
+        store_box(n, r.box);
+        n.first = 0;
+        n.count = 0;
+        n.right = r.slot + 2 * (mid - r.begin);
+    }
+
+    static void store_box(TreeNode& n, const Box4& b) {
+        alignas(16) float lo[4], hi[4];
+        store4(lo, b.lo);
+        store4(hi, b.hi);
+        for (int a = 0; a < 3; ++a) {
+            n.lo[a] = lo[a];
+            n.hi[a] = hi[a];
+        }
+    }
+
+    // Never deeper than the traversal stack: when the levels left only just
+    // suffice for a balanced tree, split at the median.
+    bool force_median(const Range& r) const {
+        const std::uint32_t n = r.end - r.begin;
+        const int levels_left = CLP_BVH_MAX_DEPTH - r.depth;
+        // balanced_needs = ceil(log2(n / max_leaf_size)) + 1, in integers.
+        int balanced_needs = 1;
+        for (std::uint64_t cap = std::uint64_t(opt_.max_leaf_size); cap < n; cap *= 2) ++balanced_needs;
+        return balanced_needs >= levels_left;
+    }
+
+    static int longest_axis(const Box4& cbox) {
+        alignas(16) float e[4];
+        store4(e, cbox.hi - cbox.lo);
+        return e[0] >= e[1] && e[0] >= e[2] ? 0 : (e[1] >= e[2] ? 1 : 2);
+    }
+
+    // The SAH over the bins' boundaries (MacDonald & Booth 1990; Wald 2007);
+    // fill(bins) bins the node's records.
+    template <class Fill>
+    Decision decide(const Range& r, Fill fill, Bins& bins) const {
+        const std::uint32_t n = r.end - r.begin;
+        const int axis_long = longest_axis(r.cbox);
+        alignas(16) float ext[4];
+        store4(ext, r.cbox.hi - r.cbox.lo);
+        Decision d;
+        float best_cost = std::numeric_limits<float>::infinity();
+        int best_axis = -1, best_bin = 0;
+        if (!force_median(r) && ext[axis_long] > 0) {
+            fill(bins);
+            float right_cost[kMaxBins];
+            for (int a = 0; a < 3; ++a) {
+                if (!(ext[a] > 0)) continue;
+                const std::uint8_t* list = bins.list[a];
+                const int m = bins.listed[a];
+                Box4 acc;
+                std::uint32_t cnt = 0;
+                for (int j = m - 1; j > 0; --j) {  // right side areas, swept from the right
+                    acc.grow(bins.box[a][list[j]]);
+                    cnt += bins.count[a][list[j]];
+                    right_cost[j] = cnt ? area(acc) * float(cnt) : 0.0f;
+                }
+                acc = Box4{};
+                cnt = 0;
+                for (int j = 0; j < m - 1; ++j) {
+                    acc.grow(bins.box[a][list[j]]);
+                    cnt += bins.count[a][list[j]];
+                    if (cnt == 0 || cnt == n) continue;
+                    const float c = area(acc) * float(cnt) + right_cost[j + 1];
+                    if (c < best_cost) {
+                        best_cost = c;
+                        best_axis = a;
+                        best_bin = list[j];
+                    }
+                }
+            }
+            const float node_area = area(r.box);
+            const float split_cost = opt_.traversal_cost + (node_area > 0 ? best_cost / node_area : 0.0f);
+            if (n <= std::uint32_t(opt_.max_leaf_size) && (best_axis < 0 || float(n) <= split_cost)) return d;
+            if (best_axis >= 0) {
+                d.kind = Decision::Sah;
+                d.axis = best_axis;
+                d.bin = best_bin;
+                return d;
+            }
+        }
+        if (n <= std::uint32_t(opt_.max_leaf_size)) return d;
+        d.kind = Decision::Median;
+        d.axis = axis_long;
+        return d;
+    }
+
+    // The children's boxes from the bins: exact, as every bin holds the union of its triangles' boxes.
+    void child_boxes(const Bins& bins, const Decision& d, Box4& left, Box4& right) const {
+        left = right = Box4{};
+        for (int j = 0; j < bins.listed[d.axis]; ++j) {
+            const int k = bins.list[d.axis][j];
+            (k <= d.bin ? left : right).grow(bins.box[d.axis][k]);
+        }
+    }
+
+    // Object median on the axis; ties broken by triangle index, so the split is
+    // the same whatever order the records arrive in. Balanced, always progresses.
+    std::uint32_t median_split(const Range& r, int axis, Range& left, Range& right) {
+        Ref* a = refs(r);
+        const std::uint32_t m = r.begin + (r.end - r.begin) / 2;
+        std::nth_element(a + r.begin, a + m, a + r.end, [axis](const Ref& x, const Ref& y) {
+            const float cx = 0.5f * x.lo[axis] + 0.5f * x.hi[axis], cy = 0.5f * y.lo[axis] + 0.5f * y.hi[axis];
+            return cx < cy || (cx == cy && x.prim < y.prim);
+        });
+        left.box = left.cbox = right.box = right.cbox = Box4{};
+        for (std::uint32_t i = r.begin; i < r.end; ++i) {
+            const F4 lo = load3(a[i].lo), hi = load3(a[i].hi);
+            Range& side = i < m ? left : right;
+            side.box.grow(lo, hi);
+            side.cbox.grow_point(centroid(lo, hi));
+        }
+        return m;
+    }
+
+    void set_children(const Range& r, std::uint32_t m, bool in_tmp, Range& left, Range& right) const {
+        left.begin = r.begin;
+        left.end = m;
+        left.slot = r.slot + 1;
+        right.begin = m;
+        right.end = r.end;
+        right.slot = r.slot + 2 * (m - r.begin);
+        left.depth = right.depth = r.depth + 1;
+        left.in_tmp = right.in_tmp = in_tmp;
+    }
+
+    // The nodes of one level large enough for all threads, together (one
+    // fork-join per pass, not per node): parallel binning, then a stable
+    // partition scattered into the other array (the same result however the
+    // records are cut into chunks). Children this large form the next level,
+    // the others become tasks.
+    void big_level(const std::vector<Range>& level, std::vector<Range>& next, std::vector<Range>& tasks) {
+        const int T = opt_.threads;
+        const std::size_t L = level.size();
+        top_interior += L;  // a large node is never a leaf
+        auto chunk = [&](std::size_t i, int t) {
+            const Range& r = level[i];
+            return r.begin + std::uint32_t(std::uint64_t(r.end - r.begin) * std::uint32_t(t) / std::uint32_t(T));
+        };
+        std::vector<BinMap> maps;
+        maps.reserve(L);
+        for (const Range& r : level) maps.emplace_back(r.cbox, opt_.bins);
+        std::vector<Bins> part(L * std::size_t(T));
+        fork_join(T, [&](int t) {
+            for (std::size_t i = 0; i < L; ++i)
+                bin_refs(refs(level[i]), chunk(i, t), chunk(i, t + 1), maps[i], part[i * std::size_t(T) + std::size_t(t)]);
+        });
+        struct Split {
+            Decision d;
+            Range left{}, right{};
+            std::vector<std::uint32_t> left_at, right_at;  // per chunk: where its records go
+        };
+        std::vector<Split> split(L);
+        Bins total;
+        for (std::size_t i = 0; i < L; ++i) {
+            const Range& r = level[i];
+            Split& sp = split[i];
+            const Bins* p = &part[i * std::size_t(T)];
+            sp.d = decide(
+                r,
+                [&](Bins& bins) {
+                    bins.clear_all(opt_.bins);
+                    for (int t = 0; t < T; ++t) bins.merge(p[t], opt_.bins);
+                    bins.list_all(opt_.bins);
+                },
+                total);
+            if (sp.d.kind != Decision::Sah) continue;
+            // Each chunk's left count is known from its bins: scatter without a counting pass.
+            child_boxes(total, sp.d, sp.left.box, sp.right.box);
+            std::uint32_t left_total = 0;
+            for (int t = 0; t < T; ++t)
+                for (int k = 0; k <= sp.d.bin; ++k) left_total += p[t].count[sp.d.axis][k];
+            sp.left_at.assign(std::size_t(T) + 1, r.begin);
+            sp.right_at.assign(std::size_t(T) + 1, r.begin + left_total);
+            for (int t = 0; t < T; ++t) {
+                std::uint32_t l = 0;
+                for (int k = 0; k <= sp.d.bin; ++k) l += p[t].count[sp.d.axis][k];
+                sp.left_at[t + 1] = sp.left_at[t] + l;
+                sp.right_at[t + 1] = sp.right_at[t] + (chunk(i, t + 1) - chunk(i, t) - l);
+            }
+        }
+        std::vector<Box4> lc(L * std::size_t(T)), rc(L * std::size_t(T));
+        fork_join(T, [&](int t) {
+            for (std::size_t i = 0; i < L; ++i) {
+                const Split& sp = split[i];
+                if (sp.d.kind != Decision::Sah) continue;
+                const Range& r = level[i];
+                const Ref* src = refs(r);
+                Ref* dst = r.in_tmp ? main_ : tmp_;
+                std::uint32_t li = sp.left_at[t], ri = sp.right_at[t];
+                Box4 lcb, rcb;
+                for (std::uint32_t k = chunk(i, t); k < chunk(i, t + 1); ++k) {
+                    const F4 lo = load3(src[k].lo), hi = load3(src[k].hi), c = centroid(lo, hi);
+                    alignas(16) std::int32_t idx[4];
+                    maps[i](c, idx);
+                    if (idx[sp.d.axis] <= sp.d.bin) {
+                        dst[li++] = src[k];
+                        lcb.grow_point(c);
+                    } else {
+                        dst[ri++] = src[k];
+                        rcb.grow_point(c);
+                    }
+                }
+                lc[i * std::size_t(T) + std::size_t(t)] = lcb;
+                rc[i * std::size_t(T) + std::size_t(t)] = rcb;
+            }
+        });
+        for (std::size_t i = 0; i < L; ++i) {
+            const Range& r = level[i];
+            Split& sp = split[i];
+            std::uint32_t m;
+            bool in_tmp = r.in_tmp;
+            if (sp.d.kind == Decision::Sah) {
+                m = sp.right_at[0];
+                in_tmp = !r.in_tmp;
+                for (int t = 0; t < T; ++t) {
+                    sp.left.cbox.grow(lc[i * std::size_t(T) + std::size_t(t)]);
+                    sp.right.cbox.grow(rc[i * std::size_t(T) + std::size_t(t)]);
+                }
+            } else {
+                m = median_split(r, sp.d.axis, sp.left, sp.right);  // a big node never becomes a leaf
+            }
+            set_children(r, m, in_tmp, sp.left, sp.right);
+            interior(r, m);
+            for (const Range* c : {&sp.left, &sp.right}) (c->end - c->begin >= kBigNode ? next : tasks).push_back(*c);
+        }
+    }
+
+    // A whole subtree on one thread: depth first, partitions in place. Returns its leaf count.
+    std::size_t subtree(const Range& root, Bins& bins) {
+        Range stack[2 * CLP_BVH_MAX_DEPTH + 4];
+        int sp = 0;
+        std::size_t leaf_count = 0;
+        stack[sp++] = root;
+        while (sp > 0) {
+            const Range r = stack[--sp];
+            Ref* a = refs(r);
+            const BinMap map(r.cbox, opt_.bins);
+            const Decision d = decide(
+                r,
+                [&](Bins& b) {
+                    if (r.end - r.begin < std::uint32_t(opt_.bins)) {
+                        bin_refs_sparse(a, r.begin, r.end, map, b);
+                    } else {
+                        bin_refs(a, r.begin, r.end, map, b);
+                        b.list_all(opt_.bins);
+                    }
+                },
+                bins);
+            if (d.kind == Decision::Leaf) {
+                bins.reset(opt_.bins);  // the bins are empty between nodes
+                leaf(r);
+                ++leaf_count;
+                continue;
+            }
+            Range left{}, right{};
+            std::uint32_t m = r.begin;
+            if (d.kind == Decision::Sah) {
+                std::uint32_t i = r.begin, j = r.end;
+                while (i < j) {
+                    const F4 lo = load3(a[i].lo), hi = load3(a[i].hi), c = centroid(lo, hi);
+                    alignas(16) std::int32_t idx[4];
+                    map(c, idx);
+                    if (idx[d.axis] <= d.bin) {
+                        left.cbox.grow_point(c);
+                        ++i;
+                    } else {
+                        right.cbox.grow_point(c);
+                        std::swap(a[i], a[--j]);
+                    }
+                }
+                m = i;
+                child_boxes(bins, d, left.box, right.box);
+                bins.reset(opt_.bins);
+            } else {
+                bins.reset(opt_.bins);
+                m = median_split(r, d.axis, left, right);
+            }
+            set_children(r, m, r.in_tmp, left, right);
+            interior(r, m);
+            stack[sp++] = right;
+            stack[sp++] = left;
+        }
+        leaves += leaf_count;
+        if (root.in_tmp) std::memcpy(main_ + root.begin, tmp_ + root.begin, (root.end - root.begin) * sizeof(Ref));
+        return leaf_count;
+    }
+};
+
+}  // namespace
+
+Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& opt) {
+    const std::size_t n = vertices.size() / 3;
+    Tree tree;
+    tree.ref_count = n;
+    tree.refs.reset(new Ref[n]);  // left uninitialised: the threads below touch it first
+    tree.nodes.reset(new TreeNode[2 * n]);
+    std::unique_ptr<Ref[]> tmp(n >= kBigNode ? new Ref[n] : nullptr);
+
+    // Records, root bounds, and the first non-finite triangle, per chunk.
+    const int T = opt.threads;
+    std::vector<Box4> box(static_cast<std::size_t>(T)), cbox(static_cast<std::size_t>(T));
+    std::vector<std::size_t> bad(std::size_t(T), n);
+    Ref* refs = tree.refs.get();
+    fork_join(T, [&](int t) {
+        Box4 b, c;
+        for (std::size_t i = n * std::size_t(t) / std::size_t(T); i < n * std::size_t(t + 1) / std::size_t(T); ++i) {
+            const glm::vec3 &p = vertices[3 * i], &q = vertices[3 * i + 1], &s = vertices[3 * i + 2];
+            Ref& r = refs[i];
+            bool finite = true;
+            for (int a = 0; a < 3; ++a) {
+                r.lo[a] = std::min({p[a], q[a], s[a]});
+                r.hi[a] = std::max({p[a], q[a], s[a]});
+                finite = finite && std::isfinite(p[a]) && std::isfinite(q[a]) && std::isfinite(s[a]);
+            }
+            if (!finite && bad[t] == n) bad[t] = i;
+            r.prim = std::uint32_t(i);
+            r.pad = 0;
+            const F4 lo = load3(r.lo), hi = load3(r.hi);
+            b.grow(lo, hi);
+            c.grow_point(centroid(lo, hi));
+        }
+        box[t] = b;
+        cbox[t] = c;
+    });
+    for (std::size_t i : bad)  // chunks in order: the first one found is the lowest index
+        if (i < n) throw Error("BVH build: triangle " + std::to_string(i) + " has a non-finite vertex coordinate");
+    Range root{};
+    for (int t = 0; t < T; ++t) {
+        root.box.grow(box[t]);
+        root.cbox.grow(cbox[t]);
+    }
+    root.begin = 0;
+    root.end = std::uint32_t(n);
+    root.slot = 0;
+    root.depth = 1;
+    root.in_tmp = false;
+    Builder builder(opt, refs, tmp.get(), tree.nodes.get());
+    builder.build(root);
+    tree.leaf_count = builder.leaves;
+    tree.subtrees = std::move(builder.subtrees);
+    tree.top_interior = builder.top_interior;
+    return tree;
+}
+
+}  // namespace clpath::bvh_build

@@ -1,0 +1,92 @@
+#pragma once
+// Four floats at once for the BVH builder's inner loops (box growth, centroid
+// bins): SSE2 on x86-64, plain arrays elsewhere. Only what the builder needs.
+#include <cstdint>
+#include <limits>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace clpath::bvh_build {
+
+#if defined(__SSE2__)
+struct F4 {
+    __m128 v;
+};
+inline F4 load4(const float* p) { return {_mm_load_ps(p)}; }  // p: 16-byte aligned
+// x, y, z from p, lane 3 zeroed: the builder's records keep an integer there,
+// which as a float is often denormal, and arithmetic on denormals is slow.
+inline F4 load3(const float* p) {
+    const __m128 mask = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
+    return {_mm_and_ps(_mm_load_ps(p), mask)};
+}
+inline void store4(float* p, F4 a) { _mm_store_ps(p, a.v); }
+inline F4 splat(float x) { return {_mm_set1_ps(x)}; }
+inline F4 set4(float x, float y, float z, float w) { return {_mm_setr_ps(x, y, z, w)}; }
+inline F4 min4(F4 a, F4 b) { return {_mm_min_ps(a.v, b.v)}; }
+inline F4 max4(F4 a, F4 b) { return {_mm_max_ps(a.v, b.v)}; }
+inline F4 operator+(F4 a, F4 b) { return {_mm_add_ps(a.v, b.v)}; }
+inline F4 operator-(F4 a, F4 b) { return {_mm_sub_ps(a.v, b.v)}; }
+inline F4 operator*(F4 a, F4 b) { return {_mm_mul_ps(a.v, b.v)}; }
+// Truncates (x clamped to [0, top]) to integers; a NaN lane gives 0: maxps
+// returns its second operand when either is NaN.
+inline void bin_index4(F4 x, F4 top, std::int32_t out[4]) {
+    const __m128 c = _mm_min_ps(_mm_max_ps(x.v, _mm_setzero_ps()), top.v);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_cvttps_epi32(c));
+}
+#else
+struct F4 {
+    float v[4];
+};
+inline F4 load4(const float* p) { return {{p[0], p[1], p[2], p[3]}}; }
+inline F4 load3(const float* p) { return {{p[0], p[1], p[2], 0.0f}}; }
+inline void store4(float* p, F4 a) {
+    for (int i = 0; i < 4; ++i) p[i] = a.v[i];
+}
+inline F4 splat(float x) { return {{x, x, x, x}}; }
+inline F4 set4(float x, float y, float z, float w) { return {{x, y, z, w}}; }
+#define CLPATH_F4_OP(name, expr)              \
+    inline F4 name(F4 a, F4 b) {              \
+        F4 r;                                 \
+        for (int i = 0; i < 4; ++i) {         \
+            const float x = a.v[i], y = b.v[i]; \
+            r.v[i] = (expr);                  \
+        }                                     \
+        return r;                             \
+    }
+CLPATH_F4_OP(min4, y < x ? y : x)
+CLPATH_F4_OP(max4, y > x ? y : x)
+CLPATH_F4_OP(operator+, x + y)
+CLPATH_F4_OP(operator-, x - y)
+CLPATH_F4_OP(operator*, x * y)
+#undef CLPATH_F4_OP
+inline void bin_index4(F4 x, F4 top, std::int32_t out[4]) {
+    for (int i = 0; i < 4; ++i) {
+        float c = x.v[i] > 0.0f ? x.v[i] : 0.0f;  // NaN -> 0
+        c = c < top.v[i] ? c : top.v[i];
+        out[i] = std::int32_t(c);
+    }
+}
+#endif
+
+// An axis-aligned box; lane 3 is ignored.
+struct Box4 {
+    F4 lo = splat(std::numeric_limits<float>::infinity());  // empty: lo > hi
+    F4 hi = splat(-std::numeric_limits<float>::infinity());
+    void grow(F4 l, F4 h) {
+        lo = min4(lo, l);
+        hi = max4(hi, h);
+    }
+    void grow(const Box4& b) { grow(b.lo, b.hi); }
+    void grow_point(F4 p) { grow(p, p); }
+};
+
+// Surface area of a non-empty box (x, y, z lanes).
+inline float area(const Box4& b) {
+    alignas(16) float e[4];
+    store4(e, b.hi - b.lo);
+    return 2.0f * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]);
+}
+
+}  // namespace clpath::bvh_build

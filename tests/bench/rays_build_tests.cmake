@@ -1,0 +1,23 @@
+# clpath bench rays (its Embree baseline and the kernels' work-group facts) and
+# clpath bench build from the command line. Included from tests/CMakeLists.txt
+# after cli/cli_tests.cmake (it uses clpath_cli_test, clpath_bench_quick_test,
+# RAYS_HEADER and CLI_OUT from there).
+
+# Every kernel's private memory and preferred work-group multiple, as the driver reports them.
+clpath_cli_test(bench_rays_kernel_info ARGS bench rays cornell --quick --no-embree
+                OUTPUT "kernel batch_trace_closest: private [0-9]+ B, local [0-9]+ B, preferred multiple [1-9][0-9]*, at most [1-9][0-9]* per group")
+
+if(CLPATH_WITH_EMBREE)
+    # Embree traces the same rays; every ray is checked against the CPU reference, like the device's.
+    clpath_bench_quick_test(rays_quick_embree ${CLI_OUT}/rays-embree.csv "${RAYS_HEADER}" embree_mismatched 3
+                            bench rays cornell --quick)
+    clpath_bench_quick_test(rays_quick_embree_room ${CLI_OUT}/rays-embree-room.csv "${RAYS_HEADER}" embree_mismatched 3
+                            bench rays room:3000 --quick)
+    clpath_cli_test(bench_rays_embree_ratio ARGS bench rays cornell --quick
+                    OUTPUT "shadow: 12288 rays .*\n  Embree: [0-9]+ hit, [0-9.]+ ms mean / [0-9.]+ ms best, [0-9.]+ Mrays/s, clpath/Embree [0-9.]+; CPU check: 12288 rays, [0-9.]+ % identical hits, [0-9]+ ties, [0-9]+ at the origin, 0 mismatched")
+endif()
+
+clpath_cli_test(bench_build_reports ARGS bench build room:3000 --repeat 2 --threads 2 --csv ${CLI_OUT}/build.csv
+                OUTPUT "room-[0-9]+, [0-9]+ triangles, 2 threads, median [0-9.]+ ms of 2, [0-9.]+ Mtris/s, SAH [0-9.]+, [0-9]+ nodes")
+clpath_cli_test(bench_build_unknown_scene FAIL ARGS bench build no-such-scene OUTPUT "no-such-scene")
+clpath_cli_test(bench_build_bad_bins FAIL ARGS bench build cornell --bins 1 OUTPUT "bins")
