@@ -23,7 +23,7 @@
 
 /* Everything a path needs to know about the scene, gathered once per work-item. */
 typedef struct {
-    global const BvhNode* nodes;
+    global const AccelNode* nodes;
     global const TriVerts* tris;
     global const uint* tri_material;
     global const Material* materials;
@@ -226,7 +226,7 @@ inline float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
 
 /* ---- the kernel --------------------------------------------------------- */
 
-kernel void render_paths(global const BvhNode* nodes, global const TriVerts* tris, global const uint* tri_material,
+kernel void render_paths(global const AccelNode* nodes, global const TriVerts* tris, global const uint* tri_material,
                          global const Material* materials, global const float* normals, global const Light* lights,
                          global const AliasEntry* alias, global const float4* env_pixels, global const float* env_cdf,
                          constant const FrameParams* fp, global AccumPixel* accum, global Counters* counters) {

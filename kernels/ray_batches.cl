@@ -79,7 +79,7 @@ kernel void batch_secondary_rays(global const TriVerts* tris, global const Batch
 }
 
 /* The timed kernels: closest hit, and any hit (shadow rays). */
-kernel void batch_trace_closest(global const BvhNode* nodes, global const TriVerts* tris,
+kernel void batch_trace_closest(global const AccelNode* nodes, global const TriVerts* tris,
                                 global const BatchRay* rays, global Hit* hits, uint count) {
     uint i = get_global_id(0);
     if (i >= count) return;
@@ -88,7 +88,7 @@ kernel void batch_trace_closest(global const BvhNode* nodes, global const TriVer
     hits[i] = traverse_bvh(nodes, tris, &rp, r->tmax, 0, 0);
 }
 
-kernel void batch_trace_any(global const BvhNode* nodes, global const TriVerts* tris, global const BatchRay* rays,
+kernel void batch_trace_any(global const AccelNode* nodes, global const TriVerts* tris, global const BatchRay* rays,
                             global int* occluder, uint count) {
     uint i = get_global_id(0);
     if (i >= count) return;

@@ -112,6 +112,33 @@ typedef struct {
     uint count1;
 } BvhNode;
 
+/*
+ * The BVH as the kernels traverse it: four children per node, made from the
+ * binary tree above by pulling grandchildren up (host/bvh/wide.hpp); 4-wide
+ * nodes were the fastest layout for OpenCL on CPUs and GPUs in tinybvh's
+ * measurements. The boxes are stored by coordinate (lo_x of the four
+ * children in one row, ...), so one float4 slab test handles all four.
+ * child[i] >= 0: index of an interior Bvh4Node.
+ * child[i] <  0: a leaf of count[i] (>= 1) triangles from ~child[i] on.
+ * child[i] == 0 with count[i] == 0: an empty slot (no node has the root as a child).
+ */
+typedef struct {
+    float lo_x[4];
+    float hi_x[4];
+    float lo_y[4];
+    float hi_y[4];
+    float lo_z[4];
+    float hi_z[4];
+    int child[4];
+    uint count[4];
+} Bvh4Node;
+
+/* Every wide level covers at least two binary levels (host/bvh/wide.cpp), so
+ * the 4-wide tree is at most half as deep, and a traversal keeps at most
+ * three siblings per level on its stack, plus the one it is about to pop. */
+#define CLP_BVH4_MAX_DEPTH (CLP_BVH_MAX_DEPTH / 2)
+#define CLP_BVH4_STACK (3 * CLP_BVH4_MAX_DEPTH + 1)
+
 /* Triangle as traversal reads it, in BVH leaf order. prim is the index of the
  * triangle in the scene's original order (for material and shading data);
  * light lets a path that hits an emitter find its light-sampling pdf (MIS). */
@@ -235,6 +262,18 @@ typedef struct {
 
 CLP_STATIC_ASSERT(sizeof(BvhNode) == 64, bvh_node_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(TriVerts) == 48, tri_verts_is_48_bytes);
+CLP_STATIC_ASSERT(sizeof(Bvh4Node) == 128, bvh4_node_is_128_bytes);
+CLP_STATIC_ASSERT(__builtin_offsetof(Bvh4Node, hi_z) == 80 && __builtin_offsetof(Bvh4Node, child) == 96 &&
+                      __builtin_offsetof(Bvh4Node, count) == 112,
+                  bvh4_node_rows);
+/* Traversal reads nodes and triangles as float4 rows (kernels/traverse.cl):
+ * each row's fourth field sits at offset 12 of its 16 bytes. */
+CLP_STATIC_ASSERT(__builtin_offsetof(BvhNode, child0) == 12 && __builtin_offsetof(BvhNode, count0) == 28 &&
+                      __builtin_offsetof(BvhNode, lo1) == 32 && __builtin_offsetof(BvhNode, child1) == 44 &&
+                      __builtin_offsetof(BvhNode, count1) == 60,
+                  bvh_node_rows);
+CLP_STATIC_ASSERT(__builtin_offsetof(TriVerts, v1) == 16 && __builtin_offsetof(TriVerts, v2) == 32,
+                  tri_verts_rows);
 CLP_STATIC_ASSERT(sizeof(Material) == 48, material_is_48_bytes);
 CLP_STATIC_ASSERT(sizeof(CameraData) == 64, camera_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(FrameParams) == 160, frame_params_is_160_bytes);

@@ -1,23 +1,27 @@
 /* Traversal of the scene's acceleration structure. traverse_bvh() is what
- * the integrator and the ray-batch kernels call; it walks the BVH, or, in a
+ * the integrator and the ray-batch kernels call; it walks the 4-wide BVH, or, in a
  * program built with -DCLP_ACCEL_FLAT, the thesis renderer's flat list of
  * object boxes (host/bvh/flat.hpp), the baseline the BVH is measured against.
  *
- * BVH traversal: a stack of CLP_BVH_MAX_DEPTH entries (the builder guarantees
- * no deeper tree), nearest child first. Nodes hold both children's boxes
- * (Aila & Laine 2009), so each step tests two boxes from one 64-byte fetch. */
+ * BVH traversal: a stack of CLP_BVH4_STACK entries (enough for the deepest
+ * tree the builder and the widening allow), nearest child first. Nodes hold
+ * their four children's boxes, so each step tests four boxes from one
+ * 128-byte fetch (shared_structs.h, Bvh4Node). */
 #ifndef CLP_TRAVERSE_CL
 #define CLP_TRAVERSE_CL
 
 #include "common.h"
 #include "intersect.cl"
 
+/* TriVerts and BvhNode are rows of four 4-byte fields at 16-byte offsets
+ * (shared_structs.h asserts it): one aligned float4 load fetches a vertex or
+ * a box corner, where three scalar loads would each be a separate access. */
 inline int intersect_leaf(const RayPre* r, global const TriVerts* tris, uint first, uint count, Hit* hit) {
     int found = 0;
     for (uint i = first; i < first + count; ++i) {
-        global const TriVerts* tv = &tris[i];
+        global const float4* tv = (global const float4*)&tris[i];
         float t, b1, b2;
-        if (intersect_triangle(r, load3g(tv->v0), load3g(tv->v1), load3g(tv->v2), hit->t, &t, &b1, &b2)) {
+        if (intersect_triangle(r, tv[0].xyz, tv[1].xyz, tv[2].xyz, hit->t, &t, &b1, &b2)) {
             hit->t = t;
             hit->b1 = b1;
             hit->b2 = b2;
@@ -28,47 +32,82 @@ inline int intersect_leaf(const RayPre* r, global const TriVerts* tris, uint fir
     return found;
 }
 
+/* The node records the kernels receive: the 4-wide BVH, or the flat list. */
+#ifdef CLP_ACCEL_FLAT
+typedef BvhNode AccelNode;
+#else
+typedef Bvh4Node AccelNode;
+#endif
+
+/* One compare-exchange of a sorting network: lanes i < j of d end in
+ * ascending order, child and count following their distance. */
+#define CLP_SORT2(i, j, sw)                                                     \
+    if (d.s##j < d.s##i) {                                                      \
+        d = d.sw;                                                               \
+        child = child.sw;                                                       \
+        count = count.sw;                                                       \
+    }
+
+/* A child slot, leaves pass: intersected at once when entered before the
+ * closest hit so far. */
+#define CLP_VISIT_LEAF(k)                                                       \
+    if (d.s##k < hit.t && child.s##k < 0) {                                     \
+        if (intersect_leaf(r, tris, (uint)~child.s##k, count.s##k, &hit) && any_hit) return hit; \
+    }
+
+/* A child slot, interior pass: still entered before the closest hit (a leaf
+ * hit may have shortened it), so it is pushed. */
+#define CLP_PUSH_INTERIOR(k)                                                    \
+    if (d.s##k < hit.t && child.s##k > 0) stack[sp++] = child.s##k;
+
 /* Closest hit in (0, tmax). *visits (may be NULL) counts nodes fetched, for
  * the traversal heat map and benchmarks. When any_hit is set, returns at the
- * first hit found (shadow rays): the compiler folds it for constant arguments. */
-inline Hit traverse_tree(global const BvhNode* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
+ * first hit found (shadow rays): the compiler folds it for constant arguments.
+ *
+ * Each step fetches one 128-byte Bvh4Node as eight float4 rows and tests its
+ * four boxes in one vector slab test; the children are sorted by entry
+ * distance (a five-exchange sorting network, Knuth TAOCP vol. 3, 5.3.4), the
+ * leaves among them intersected nearest first, and the interior ones pushed
+ * farthest first, so the nearest is the next popped. */
+inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
                          int any_hit, uint* visits) {
     Hit hit;
     hit.t = tmax;
     hit.tri = -1;
     hit.b1 = hit.b2 = 0.0f;
-    int stack[CLP_BVH_MAX_DEPTH];
+    /* Node indices only: keeping each entry distance too, to drop nodes
+     * entered beyond a hit found after the push, cost more than it saved
+     * (bunny, PoCL) and doubles the private memory. */
+    int stack[CLP_BVH4_STACK];
     int sp = 0;
     int node = 0;
     for (;;) {
-        global const BvhNode* n = &nodes[node];
+        global const float4* n = (global const float4*)&nodes[node];
         if (visits) ++*visits;
-        float t0 = intersect_box(r, load3g(n->lo0), load3g(n->hi0), hit.t);
-        float t1 = intersect_box(r, load3g(n->lo1), load3g(n->hi1), hit.t);
-        int c0 = n->child0, c1 = n->child1;
-        /* Leaves are intersected at once; only interior children are descended. */
-        if (t0 < INFINITY && c0 < 0) {
-            if (intersect_leaf(r, tris, (uint)~c0, n->count0, &hit) && any_hit) return hit;
-            t0 = INFINITY;
+        float4 d = intersect_box4(r, n[0], n[1], n[2], n[3], n[4], n[5], hit.t);
+        int4 child = as_int4(n[6]);
+        uint4 count = as_uint4(n[7]);
+        d = select(d, (float4)(INFINITY), child == 0); /* empty slots */
+        if (any(d < hit.t)) {
+            /* Any hit will do for shadow rays: the order only matters to the closest. */
+            if (!any_hit) {
+                CLP_SORT2(0, 1, s1023)
+                CLP_SORT2(2, 3, s0132)
+                CLP_SORT2(0, 2, s2103)
+                CLP_SORT2(1, 3, s0321)
+                CLP_SORT2(1, 2, s0213)
+            }
+            CLP_VISIT_LEAF(0)
+            CLP_VISIT_LEAF(1)
+            CLP_VISIT_LEAF(2)
+            CLP_VISIT_LEAF(3)
+            CLP_PUSH_INTERIOR(3)
+            CLP_PUSH_INTERIOR(2)
+            CLP_PUSH_INTERIOR(1)
+            CLP_PUSH_INTERIOR(0)
         }
-        if (t1 < INFINITY && c1 < 0) {
-            if (intersect_leaf(r, tris, (uint)~c1, n->count1, &hit) && any_hit) return hit;
-            t1 = INFINITY;
-        }
-        /* A leaf hit may have shortened hit.t; a child entered beyond it is pruned. */
-        int go0 = t0 < hit.t, go1 = t1 < hit.t;
-        if (go0 && go1) {
-            int near = t0 <= t1 ? c0 : c1;
-            stack[sp++] = t0 <= t1 ? c1 : c0;
-            node = near;
-        } else if (go0) {
-            node = c0;
-        } else if (go1) {
-            node = c1;
-        } else {
-            if (sp == 0) break;
-            node = stack[--sp];
-        }
+        if (sp == 0) break;
+        node = stack[--sp];
     }
     return hit;
 }
@@ -98,7 +137,7 @@ inline Hit traverse_flat(global const BvhNode* nodes, global const TriVerts* tri
     return hit;
 }
 
-inline Hit traverse_bvh(global const BvhNode* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
+inline Hit traverse_bvh(global const AccelNode* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
                         int any_hit, uint* visits) {
 #ifdef CLP_ACCEL_FLAT
     return traverse_flat(nodes, tris, r, tmax, any_hit, visits);

@@ -227,7 +227,8 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
 
     const Bvh structure = build_accel(o.accel, scene.vertices, scene.triangle_object, o.bvh);
     res.structure = structure.stats;
-    res.structure_bytes = structure.nodes.size() * sizeof(BvhNode) + structure.triangles.size() * sizeof(TriVerts);
+    const std::vector<unsigned char> node_bytes = device_nodes(o.accel, structure);
+    res.structure_bytes = node_bytes.size() + structure.triangles.size() * sizeof(TriVerts);
     // The CPU reference walks a BVH; for the flat structure it is a second
     // structure, so the check also compares flat against BVH.
     std::optional<Bvh> own_reference;
@@ -236,15 +237,14 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     say(std::string(accel_name(o.accel)) + ": " + describe(structure.stats));
 
     const std::size_t n = std::size_t(o.width) * std::size_t(o.height) * kSamplesPerPixel;
-    ctx.check_fits({{"acceleration nodes", structure.nodes.size() * sizeof(BvhNode)},
+    ctx.check_fits({{"acceleration nodes", node_bytes.size()},
                     {"triangles", structure.triangles.size() * sizeof(TriVerts)},
                     {"primary rays", n * sizeof(BatchRay)},
                     {"primary hits", n * sizeof(Hit)},
                     {"secondary rays", n * sizeof(BatchRay)},
                     {"secondary hits", n * sizeof(Hit)},
                     {"hit list", n * sizeof(std::uint32_t)}});
-    Buffer nodes = ctx.buffer(structure.nodes.size() * sizeof(BvhNode), CL_MEM_READ_ONLY, "acceleration nodes",
-                              structure.nodes.data());
+    Buffer nodes = ctx.buffer(node_bytes.size(), CL_MEM_READ_ONLY, "acceleration nodes", node_bytes.data());
     Buffer tris = ctx.buffer(structure.triangles.size() * sizeof(TriVerts), CL_MEM_READ_ONLY, "triangles",
                              structure.triangles.data());
     Buffer cam_buf = ctx.buffer(sizeof cam, CL_MEM_READ_ONLY, "camera", &cam);

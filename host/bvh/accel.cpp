@@ -1,6 +1,9 @@
 #include "bvh/accel.hpp"
 
+#include <cstring>
+
 #include "bvh/flat.hpp"
+#include "bvh/wide.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -22,6 +25,19 @@ Bvh build_accel(Accel accel, const std::vector<glm::vec3>& vertices,
                 const std::vector<std::uint32_t>& triangle_object, const BvhBuildOptions& options) {
     if (accel == Accel::Flat) return build_flat(vertices, triangle_object, options.traversal_cost);
     return build_bvh(vertices, options);
+}
+
+std::vector<unsigned char> device_nodes(Accel accel, const Bvh& structure) {
+    std::vector<unsigned char> bytes;
+    auto copy = [&bytes](const auto& records) {
+        bytes.resize(records.size() * sizeof(records[0]));
+        std::memcpy(bytes.data(), records.data(), bytes.size());
+    };
+    if (accel == Accel::Flat)
+        copy(structure.nodes);
+    else
+        copy(widen_bvh(structure.nodes));
+    return bytes;
 }
 
 }  // namespace clpath

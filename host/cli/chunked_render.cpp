@@ -55,6 +55,7 @@ ChunkedRenderResult render_in_chunks(const Scene& scene, const RenderSettings& s
     ChunkedRenderResult r;
     r.writes_output = lead;
     DeviceFarm farm(devices, scene, settings, std::move(start), done);
+    if (o.progress && lead) std::fprintf(stderr, "clpath: %s\n", describe(farm.bvh_stats()).c_str());
     ChunkQueue queue(plan, o.time_limit, done);
 #ifdef CLPATH_WITH_MPI
     RemoteChunks remote;

@@ -15,7 +15,8 @@ std::size_t alias_bytes(const PreparedScene& s) {
 }  // namespace
 
 std::vector<std::pair<std::string, std::size_t>> DeviceScene::memory_needs(const PreparedScene& s) {
-    return {{"BVH nodes", s.accel.nodes.size() * sizeof(BvhNode)},
+    // The kernels' node records (device_nodes): widened from the binary tree, so sized by converting.
+    return {{"BVH nodes", device_nodes(s.summary.accel, s.accel).size()},
             {"triangles", s.accel.triangles.size() * sizeof(TriVerts)},
             {"triangle materials", s.triangle_material.size() * sizeof(std::uint32_t)},
             {"materials", s.materials.size() * sizeof(Material)},
@@ -27,7 +28,8 @@ std::vector<std::pair<std::string, std::size_t>> DeviceScene::memory_needs(const
 
 DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s) : ctx_(ctx), summary_(s.summary) {
     ctx.check_fits(memory_needs(s));
-    nodes_ = ctx.buffer(s.accel.nodes.size() * sizeof(BvhNode), CL_MEM_READ_ONLY, "BVH nodes", s.accel.nodes.data());
+    const std::vector<unsigned char> node_bytes = device_nodes(s.summary.accel, s.accel);
+    nodes_ = ctx.buffer(node_bytes.size(), CL_MEM_READ_ONLY, "BVH nodes", node_bytes.data());
     tris_ = ctx.buffer(s.accel.triangles.size() * sizeof(TriVerts), CL_MEM_READ_ONLY, "triangles",
                        s.accel.triangles.data());
     tri_material_ = ctx.buffer(s.triangle_material.size() * sizeof(std::uint32_t), CL_MEM_READ_ONLY,

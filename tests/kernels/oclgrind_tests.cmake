@@ -39,12 +39,15 @@ endfunction()
 # The renderer: each integrator with every material and light feature compiled
 # in, on a scene that has them all (every material kind, triangle, point, spot
 # and directional lights, an environment image, smooth normals).
+# Without --uninitialized: Oclgrind 21.10 does not count memory set by
+# clEnqueueFillBuffer (how the film is cleared) as initialised, and reports
+# every read of the film's running sums.
 set(OCLGRIND_SCENE ${OCLGRIND_DATA}/oclgrind-features.json)
 foreach(integrator path path-bsdf ao normals depth albedo heatmap)
-    clpath_oclgrind_test(render.${integrator} OPTIONS ${OCLGRIND_STRICT}
+    clpath_oclgrind_test(render.${integrator} OPTIONS ${OCLGRIND_BASIC}
                          COMMAND $<TARGET_FILE:clpath> render ${OCLGRIND_SCENE} --all-features -i ${integrator}
                                  -q -o ${OCLGRIND_LOGS}/render-${integrator}.pfm
-                         OUTPUT "device=\"Oclgrind Simulator\" integrator=${integrator} .*nonfinite=0")
+                         OUTPUT "device=\"Oclgrind Simulator\" .*integrator=${integrator} .*nonfinite=0")
 endforeach()
 # Programs compiled with only the features a scene has, the flat object list,
 # uniform hemisphere sampling with the depth roulette rule.

@@ -110,7 +110,7 @@ kernel void probe_triangle(global const float* rays, global const float* tris, g
 
 /* Ray i against the BVH: closest hit (t, original triangle index or -1) and
  * whether any hit exists before tmax[i]. */
-kernel void probe_trace(global const BvhNode* nodes, global const TriVerts* tris, global const float* rays,
+kernel void probe_trace(global const AccelNode* nodes, global const TriVerts* tris, global const float* rays,
                         global const float* tmax, global float* out_t, global int* out_prim, global int* out_any,
                         uint count) {
     uint i = get_global_id(0);

@@ -16,7 +16,7 @@
  * point, and aim at it: they must hit the mesh no further than the target plus
  * margin (a hit on the far side means the ray slipped through the near side).
  * Leaks are counted; the first leaking ray's index is kept. */
-kernel void probe_watertight(global const BvhNode* nodes, global const TriVerts* tris, global const float* targets,
+kernel void probe_watertight(global const AccelNode* nodes, global const TriVerts* tris, global const float* targets,
                              uint target_count, float cx, float cy, float cz, float radius, float margin,
                              ulong first, uint count, uint seed, global uint* leaks, global ulong* first_leak) {
     uint g = get_global_id(0);

@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include "bvh/accel.hpp"
 #include "bvh/bvh.hpp"
 
 namespace clpath::test {

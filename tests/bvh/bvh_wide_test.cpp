@@ -1,0 +1,122 @@
+// The 4-wide BVH the kernels traverse (host/bvh/wide.hpp): its invariants on
+// ordinary, degenerate and deep trees, the depth bound the traversal stack
+// relies on, and controls showing that the check rejects broken trees.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "bvh/wide.hpp"
+#include "scene/shapes.hpp"
+
+using namespace clpath;
+
+namespace {
+
+std::vector<glm::vec3> soup(std::size_t n, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1, 1);
+    std::vector<glm::vec3> v;
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::vec3 c(u(rng), u(rng), u(rng));
+        for (int k = 0; k < 3; ++k) v.push_back(c + 0.1f * glm::vec3(u(rng), u(rng), u(rng)));
+    }
+    return v;
+}
+
+int checked_depth(const Bvh& bvh) {
+    const std::vector<Bvh4Node> wide = widen_bvh(bvh.nodes);
+    int depth = 0;
+    EXPECT_NO_THROW(depth = check_wide(wide, bvh));
+    EXPECT_LE(wide.size(), bvh.nodes.size()) << "collapsing never adds nodes";
+    // Each wide level spans two binary ones (root = 1 on both sides).
+    EXPECT_LE(depth, (bvh.stats.max_depth + 1) / 2);
+    return depth;
+}
+
+// A binary tree of the given depth that widens as deep as the bound allows:
+// chain node i holds a twig (a node of two one-triangle leaves) and chain
+// node i + 1; the last chain node holds two twigs. Every wide node then spans
+// exactly two binary levels. All boxes are one box around everything, which
+// contains whatever is below it.
+Bvh twig_chain(int depth) {
+    Bvh b;
+    const int chain = depth - 1;  // twigs hang one level below the chain
+    auto set = [](BvhNode& n, int slot, int child, std::uint32_t count, float size) {
+        float* lo = slot ? n.lo1 : n.lo0;
+        float* hi = slot ? n.hi1 : n.hi0;
+        for (int a = 0; a < 3; ++a) lo[a] = 0, hi[a] = a == 2 ? 0 : size;
+        (slot ? n.child1 : n.child0) = child;
+        (slot ? n.count1 : n.count0) = count;
+    };
+    const float size = float(2 * chain + 4);
+    b.nodes.resize(std::size_t(chain));
+    auto add_twig = [&]() {
+        const int index = int(b.nodes.size());
+        b.nodes.emplace_back();
+        for (int s = 0; s < 2; ++s) {
+            const int tri = int(b.triangles.size());
+            TriVerts t{};
+            const float x = float(tri) * 0.5f;
+            const float v[3][3] = {{x, 0, 0}, {x + 1, 0, 0}, {x, 1, 0}};
+            for (int a = 0; a < 3; ++a) t.v0[a] = v[0][a], t.v1[a] = v[1][a], t.v2[a] = v[2][a];
+            t.prim = std::uint32_t(tri);
+            b.triangles.push_back(t);
+            set(b.nodes[std::size_t(index)], s, ~tri, 1, size);
+        }
+        return index;
+    };
+    for (int i = 0; i < chain; ++i) {
+        const int twig = add_twig();
+        set(b.nodes[std::size_t(i)], 0, twig, 0, size);
+        const int next = i + 1 < chain ? i + 1 : add_twig();
+        set(b.nodes[std::size_t(i)], 1, next, 0, size);
+    }
+    b.stats.max_depth = depth;
+    return b;
+}
+
+}  // namespace
+
+TEST(BvhWide, InvariantsOnOrdinaryMeshes) {
+    EXPECT_GE(checked_depth(build_bvh(soup(20000, 1))), 3);
+    checked_depth(build_bvh(make_icosphere(4)));
+    checked_depth(build_bvh(make_box()));
+}
+
+TEST(BvhWide, OneAndTwoTriangles) {
+    const Bvh one = build_bvh(soup(1, 2));
+    const std::vector<Bvh4Node> wide = widen_bvh(one.nodes);
+    ASSERT_EQ(wide.size(), 1u);
+    EXPECT_EQ(wide[0].count[0], 1u);
+    EXPECT_EQ(wide[0].child[1], 0) << "the other slots are empty";
+    EXPECT_EQ(check_wide(wide, one), 1);
+    checked_depth(build_bvh(soup(2, 3)));
+}
+
+TEST(BvhWide, IdenticalTriangles) {
+    std::vector<glm::vec3> v;
+    for (int i = 0; i < 5000; ++i) v.insert(v.end(), {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    checked_depth(build_bvh(v));
+}
+
+TEST(BvhWide, DeepestBinaryTreeFitsTheStack) {
+    const Bvh chain = twig_chain(CLP_BVH_MAX_DEPTH);
+    const std::vector<Bvh4Node> wide = widen_bvh(chain.nodes);
+    EXPECT_EQ(check_wide(wide, chain), CLP_BVH4_MAX_DEPTH);
+}
+
+TEST(BvhWide, ControlBrokenTreesAreRejected) {
+    const Bvh bvh = build_bvh(soup(2000, 4));
+    const std::vector<Bvh4Node> good = widen_bvh(bvh.nodes);
+    ASSERT_NO_THROW(check_wide(good, bvh));
+    std::vector<Bvh4Node> w = good;
+    w[1].hi_x[0] = w[1].lo_x[0];  // a leaf or child box shrunk to a plane
+    EXPECT_THROW(check_wide(w, bvh), std::logic_error);
+    w = good;
+    w[0].child[1] = w[0].child[0];  // a node reached twice, another never
+    EXPECT_THROW(check_wide(w, bvh), std::logic_error);
+    // A tree one binary level too deep widens one wide level too deep.
+    const Bvh chain = twig_chain(CLP_BVH_MAX_DEPTH + 2);
+    EXPECT_THROW(check_wide(widen_bvh(chain.nodes), chain), std::logic_error);
+    EXPECT_THROW(widen_bvh({}), std::invalid_argument);
+}
