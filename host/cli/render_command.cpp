@@ -147,7 +147,6 @@ int run_render(const RenderOptions& o) {
         throw Error(o.scene + ": " + e.what());
     }
     if (!result.writes_output) return 0;
-    if (!o.quiet) std::fprintf(stderr, "clpath: %s\n", describe(result.bvh).c_str());
     const std::uint64_t done_spp = result.film.samples_per_pixel();
     if (result.interrupted) {
         std::fprintf(stderr, "clpath: interrupted by signal %d after %llu samples per pixel\n", result.signal,
