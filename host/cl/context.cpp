@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "util/env_values.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -19,6 +20,8 @@ std::string mib(std::size_t bytes) {
 }  // namespace
 
 Context::Context(const DeviceInfo& device) : device_(device) {
+    // A bad value is refused before any work, not when the first buffer is made.
+    env_whole_number("CLPATH_DEVICE_MEMORY_LIMIT", 1, UINT64_MAX, "bytes");
     cl_int err = CL_SUCCESS;
     ctx_ = clCreateContext(nullptr, 1, &device_.device, nullptr, nullptr, &err);
     cl_check(err, "clCreateContext on " + device_.name);
@@ -30,6 +33,7 @@ Context::Context(const DeviceInfo& device) : device_(device) {
 }
 
 Context::Context(const DeviceInfo& device, const std::vector<cl_context_properties>& properties) : device_(device) {
+    env_whole_number("CLPATH_DEVICE_MEMORY_LIMIT", 1, UINT64_MAX, "bytes");
     cl_int err = CL_SUCCESS;
     ctx_ = clCreateContext(properties.empty() ? nullptr : properties.data(), 1, &device_.device, nullptr, nullptr, &err);
     cl_check(err, "clCreateContext (with properties) on " + device_.name);
@@ -53,8 +57,8 @@ void Context::check_fits(const std::vector<std::pair<std::string, std::size_t>>&
     // refusing a scene too large for it can be tested on any machine.
     std::size_t max_alloc = device_.max_alloc, global_mem = device_.global_mem;
     std::string limited;
-    if (const char* env = std::getenv("CLPATH_DEVICE_MEMORY_LIMIT"); env && *env) {
-        const std::size_t limit = std::strtoull(env, nullptr, 10);
+    if (const auto env = env_whole_number("CLPATH_DEVICE_MEMORY_LIMIT", 1, UINT64_MAX, "bytes")) {
+        const std::size_t limit = std::size_t(*env);
         max_alloc = std::min(max_alloc, limit);
         global_mem = std::min(global_mem, limit);
         limited = " (limited by CLPATH_DEVICE_MEMORY_LIMIT)";

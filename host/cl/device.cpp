@@ -117,17 +117,25 @@ DeviceInfo select_device(const std::string& spec_in) {
             if (d.is_cpu) return d;
         return devices.front();
     }
+    // By type, as other OpenCL tools take it: the first device of that kind.
+    if (const std::string type = lower(spec); type == "cpu" || type == "gpu") {
+        for (const auto& d : devices)
+            if (type == "gpu" ? d.is_gpu : d.is_cpu) return d;
+        throw UsageError(origin + " " + spec + ": no " + (type == "gpu" ? "GPU" : "CPU") + " device. Devices:\n" +
+                         list_for_message(devices));
+    }
     if (std::all_of(spec.begin(), spec.end(), [](unsigned char c) { return std::isdigit(c); })) {
         std::size_t i = spec.size() > 6 ? devices.size() : std::stoul(spec);
         if (i < devices.size()) return devices[i];
-        throw Error(origin + " " + spec + ": no device with that index. Devices:\n" + list_for_message(devices));
+        throw UsageError(origin + " " + spec + ": no device with that index (the indices are 0 to " +
+                         std::to_string(devices.size() - 1) + "). Devices:\n" + list_for_message(devices));
     }
     const std::string want = lower(spec);
     for (const auto& d : devices)
         if (lower(d.name).find(want) != std::string::npos) return d;
     for (const auto& d : devices)
         if (lower(d.platform_name).find(want) != std::string::npos) return d;
-    throw Error(origin + " '" + spec + "': no device name matches. Devices:\n" + list_for_message(devices));
+    throw UsageError(origin + " '" + spec + "': no device name matches. Devices:\n" + list_for_message(devices));
 }
 
 }  // namespace clpath

@@ -25,10 +25,11 @@ struct DeviceInfo {
 // platform is installed (that is not an error here; choosing then is).
 std::vector<DeviceInfo> list_devices();
 
-// spec: an index into list_devices(), or a case-insensitive substring of the
-// device or platform name. Empty spec: $CLPATH_DEVICE if set, else the first
+// spec: "cpu" or "gpu" (the first device of that type), an index into
+// list_devices(), or a case-insensitive substring of the device or platform
+// name. Empty spec: $CLPATH_DEVICE if set, else the first
 // GPU, else the first CPU device. Throws clpath::Error naming what was asked
-// for and what exists.
+// for and what exists (a UsageError when devices exist but none matches).
 DeviceInfo select_device(const std::string& spec);
 
 }  // namespace clpath

@@ -12,6 +12,7 @@
 #include "bench/estimator_configs.hpp"
 #include "cl/context.hpp"
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/mpi_launch.hpp"
 #include "cli/series_exchange.hpp"
 #include "scene/scene_loader.hpp"
@@ -154,23 +155,23 @@ Command add_bench_convergence_command(CLI::App& bench) {
         ->delimiter(',')
         ->check(CLI::IsMember(estimator_config_names()));
     cmd->add_option("--max-spp", o->max_spp, "Largest samples per pixel (a power of two is measured; default 1024, quick 16)")
-        ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 31));
+        ->check(whole_number(1, std::uint64_t(1) << 31));
     cmd->add_option("--time-cap", o->time_cap, "Per configuration: start no doubling that would end past S seconds")
-        ->check(CLI::PositiveNumber);
+        ->check(real_number(0, 1e9, true));
     cmd->add_option("--width", o->width, "Render width (default: the reference's; it must be a multiple)")
-        ->check(CLI::Range(1, 16384));
+        ->check(whole_number(1, 16384));
     cmd->add_option("--height", o->height, "Render height (default: from the width and the reference's aspect)")
-        ->check(CLI::Range(1, 16384));
+        ->check(whole_number(1, 16384));
     cmd->add_option("--csv", o->csv, "Write every point as CSV here");
     cmd->add_option("--md", o->md, "Write the Markdown table here");
     cmd->add_option("--mask-above", o->compare.mask_above,
                     "Leave out pixels where the reference exceeds V in any channel (directly seen emitters)")
-        ->check(CLI::PositiveNumber);
+        ->check(real_number(0, 1e9, true));
     cmd->add_option("--mask-grow", o->compare.mask_grow,
                     "Also leave out pixels within N pixels of a masked one (an emitter's partly covered edge)")
-        ->check(CLI::Range(0, 64));
+        ->check(whole_number(0, 64));
     cmd->add_option("--clamp", o->compare.clamp, "Clamp both images to [0, V] before comparing")
-        ->check(CLI::PositiveNumber);
+        ->check(real_number(0, 1e9, true));
     cmd->add_flag("--quick", o->quick, "Seconds, for CI: about 32 pixels wide, up to 16 spp");
     cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
     return [o] { return run_convergence(*o); };

@@ -11,6 +11,7 @@
 #include "bench/report_files.hpp"
 #include "cl/context.hpp"
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "scene/scene_loader.hpp"
 #include "shared_structs.h"
 #include "util/error.hpp"
@@ -137,27 +138,27 @@ Command add_bench_rays_command(CLI::App& bench) {
         ->required();
     const std::string tile = std::to_string(CLP_BATCH_TILE);
     cmd->add_option("--width", o->width, "Pixels across (a multiple of " + tile + ")")
-        ->check(CLI::Range(int(CLP_BATCH_TILE), 16384))
+        ->check(whole_number(CLP_BATCH_TILE, 16384))
         ->capture_default_str();
     cmd->add_option("--height", o->height, "Pixels down (a multiple of " + tile + ")")
-        ->check(CLI::Range(int(CLP_BATCH_TILE), 16384))
+        ->check(whole_number(CLP_BATCH_TILE, 16384))
         ->capture_default_str();
     cmd->add_option("--camera", o->camera, "eye_x,eye_y,eye_z,target_x,target_y,target_z[,vfov] (default: the scene's)");
     cmd->add_option("--light", o->light,
                     "Point light x,y,z for the shadow rays (default: the scene's point light, else just below its "
                     "emitters, else above its bounding box)");
     cmd->add_option("--launches", o->launches, "Timed launches per batch, after one warm-up")
-        ->check(CLI::Range(1, 1000))
+        ->check(whole_number(1, 1000))
         ->capture_default_str();
     cmd->add_option("--workgroup", o->workgroup, "Work-items per work-group (0: the driver chooses)")
-        ->check(CLI::Range(std::size_t(0), std::size_t(1) << 20))
+        ->check(whole_number(0, std::uint64_t(1) << 20))
         ->capture_default_str();
     cmd->add_option("--accel", o->accel, "Acceleration structure: bvh, or flat (one box per object)")
         ->check(CLI::IsMember(accel_names()))
         ->capture_default_str();
     cmd->add_option("--check", o->check, "Rays per batch checked against the CPU reference, evenly spaced (0: all)")
         ->capture_default_str();
-    cmd->add_option("--seed", o->seed, "Seed of the diffuse directions")->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Seed of the diffuse directions")->check(whole_number(0, 4294967295u))->capture_default_str();
     cmd->add_option("--csv", o->csv, "Write the results as CSV to this file");
     cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
     cmd->add_flag("--quick", o->quick, "32x24 pixels, one timed launch, every ray checked (for CI)");

@@ -9,6 +9,7 @@
 #include "bench/scaling.hpp"
 #include "cl/context.hpp"
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "shared_structs.h"
 #include "util/error.hpp"
 
@@ -25,7 +26,7 @@ struct ScalingCliOptions {
 
 std::size_t whole_count(double v, const char* what) {
     if (!(v >= 100 && v <= 5e7) || v != std::floor(v))
-        throw Error(std::string(what) + " " + std::to_string(v) + ": expected a whole number of triangles in [100, 5e7]");
+        throw UsageError(std::string(what) + " " + plain_number(v) + ": expected a whole number of triangles from 100 to 50000000");
     return std::size_t(v);
 }
 
@@ -33,7 +34,7 @@ int run_scaling_cli(const ScalingCliOptions& c) {
     ScalingOptions o;
     o.min = whole_count(c.min, "--min");
     o.max = whole_count(c.max, "--max");
-    if (o.min > o.max) throw Error("--min " + std::to_string(o.min) + " is larger than --max " + std::to_string(o.max));
+    if (o.min > o.max) throw UsageError("--min " + std::to_string(o.min) + " is larger than --max " + std::to_string(o.max));
     o.time_cap_s = c.time_cap;
     o.bvh = c.accel != "flat";
     o.flat = c.accel != "bvh";
@@ -52,7 +53,7 @@ int run_scaling_cli(const ScalingCliOptions& c) {
         o.path_spp = 1;
     }
     if (o.ray_width % int(CLP_BATCH_TILE) || o.ray_height % int(CLP_BATCH_TILE))
-        throw Error("--width and --height must be multiples of " + std::to_string(CLP_BATCH_TILE));
+        throw UsageError("--width and --height must be multiples of " + std::to_string(CLP_BATCH_TILE));
     if (!c.csv.empty()) check_report_path(c.csv, "--csv");
     if (!c.md.empty()) check_report_path(c.md, "--md");
     const DeviceInfo device = select_device(c.device);
@@ -80,9 +81,9 @@ Command add_bench_scaling_command(CLI::App& bench) {
     CLI::App* cmd = bench.add_subcommand(
         "scaling", "Triangle-count scaling: build time, SAH, memory, ray batches and path samples/s, BVH and flat");
     cmd->add_option("--min", o->min, "Fewest triangles (>= 100)")->capture_default_str();
-    cmd->add_option("--max", o->max, "Most triangles (<= 5e7; sizes go in 1-3-10 steps)")->capture_default_str();
+    cmd->add_option("--max", o->max, "Most triangles (<= 50000000; sizes go in 1-3-10 steps)")->capture_default_str();
     cmd->add_option("--time-cap", o->time_cap, "Flat structure: stop before a size predicted to take longer (seconds)")
-        ->check(CLI::PositiveNumber)
+        ->check(real_number(0, 1e9, true))
         ->capture_default_str();
     cmd->add_option("--accel", o->accel, "Structures to measure: both, bvh, flat")
         ->check(CLI::IsMember({"both", "bvh", "flat"}))
@@ -90,12 +91,12 @@ Command add_bench_scaling_command(CLI::App& bench) {
     cmd->add_option("--width", o->width,
                     "Ray batches: pixels across (multiple of " + std::to_string(CLP_BATCH_TILE) + "; x " +
                         std::to_string(CLP_BATCH_SAMPLES) + " samples)")
-        ->check(CLI::Range(int(CLP_BATCH_TILE), 4096))
+        ->check(whole_number(CLP_BATCH_TILE, 4096))
         ->capture_default_str();
     cmd->add_option("--height", o->height, "Ray batches: pixels down (multiple of " + std::to_string(CLP_BATCH_TILE) + ")")
-        ->check(CLI::Range(int(CLP_BATCH_TILE), 4096))
+        ->check(whole_number(CLP_BATCH_TILE, 4096))
         ->capture_default_str();
-    cmd->add_option("--launches", o->launches, "Timed launches per batch")->check(CLI::Range(1, 100))->capture_default_str();
+    cmd->add_option("--launches", o->launches, "Timed launches per batch")->check(whole_number(1, 100))->capture_default_str();
     cmd->add_option("--csv", o->csv, "Write the table as CSV to this file");
     cmd->add_option("--md", o->md, "Write the table as Markdown to this file");
     cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "scene/mitsuba_export.hpp"
 #include "scene/obj_export.hpp"
 #include "scene/scene_loader.hpp"
@@ -57,26 +58,40 @@ int run_mitsuba_export(const ExportArgs& o, const Scene& scene) {
 int run_export(const ExportArgs& o) {
     namespace fs = std::filesystem;
     const fs::path json = o.out;
-    if (json.extension() != ".json") throw Error("output " + o.out + ": must end in .json (the OBJ and MTL go beside it)");
+    if (json.extension() != ".json")
+        throw UsageError("output " + o.out + ": must end in .json (the OBJ and MTL go beside it)");
     const std::string stem = json.stem().string();
     const fs::path obj = fs::path(json).replace_extension(".obj"), mtl = fs::path(json).replace_extension(".mtl");
-    for (const auto& p : {json, obj, mtl}) check_text_output_path(p.string());
+    // The folder is made (as render makes out/) only once the export has
+    // succeeded; what can be checked before is checked here.
+    const fs::path folder = json.parent_path();
+    std::error_code ec;
+    if (!folder.empty() && fs::exists(folder, ec) && !fs::is_directory(folder, ec))
+        throw UsageError("output " + o.out + ": " + folder.string() + " is a file, not a folder");
+    if (fs::is_directory(folder.empty() ? fs::path(".") : folder, ec))
+        for (const auto& p : {json, obj, mtl}) check_text_output_path(p.string());
 
     Scene scene = load_scene(o.scene);
     for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
     if (o.width) scene.camera.width = o.width;
     if (o.height) scene.camera.height = o.height;
     if (o.max_depth) scene.render.max_depth = *o.max_depth;
-    if (o.format == "mitsuba") return run_mitsuba_export(o, scene);
+    if (o.format == "mitsuba") {
+        if (!folder.empty() && !fs::is_directory(folder, ec)) fs::create_directories(folder, ec);
+        return run_mitsuba_export(o, scene);
+    }
     ObjExport e;
     try {
         e = export_obj_scene(scene, stem, o.scene);
     } catch (const Error& err) {
         throw Error(o.scene + ": cannot export: " + err.what());
     }
+    if (!folder.empty() && !fs::is_directory(folder, ec)) {
+        fs::create_directories(folder, ec);
+        if (ec) throw Error("output " + o.out + ": cannot create the folder " + folder.string() + ": " + ec.message());
+    }
     // The scene file last: it is what names the other two. A failure removes
     // what this run wrote.
-    std::error_code ec;
     try {
         write_text_file(obj.string(), e.obj);
         write_text_file(mtl.string(), e.mtl);
@@ -96,14 +111,20 @@ int run_export(const ExportArgs& o) {
 Command add_export_command(CLI::App& app) {
     auto o = std::make_shared<ExportArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "export", "Write a scene of diffuse and emissive surfaces as OBJ + MTL + a scene file (for Cycles references)");
+        "export", "Write a scene as OBJ + MTL + a scene file (for Cycles references)");
+    cmd->footer(
+        "--format obj (the default) exports diffuse materials, emitters (one- or two-sided), flat-shaded triangles\n"
+        "and a constant-colour environment, and refuses, naming the first one met: mirror, conductor (glossy) and\n"
+        "dielectric (glass) materials, smooth shading normals, punctual lights (point, spot, directional: so a\n"
+        "bare mesh's default sun too) and environment images. --format mitsuba exports every material and light.\n"
+        "The output folder is created if missing.");
     cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj) or built-in scene")->required();
     cmd->add_option("out", o->out, "Output scene file NAME.json; NAME.obj and NAME.mtl are written beside it")
         ->required();
-    cmd->add_option("--width", o->width, "Image width (default: the scene's)")->check(CLI::Range(1, 16384));
-    cmd->add_option("--height", o->height, "Image height (default: the scene's)")->check(CLI::Range(1, 16384));
+    cmd->add_option("--width", o->width, "Image width (default: the scene's)")->check(whole_number(1, 16384));
+    cmd->add_option("--height", o->height, "Image height (default: the scene's)")->check(whole_number(1, 16384));
     cmd->add_option("--max-depth", o->max_depth, "Maximum bounces to record (default: the scene's)")
-        ->check(CLI::Range(0, 1024));
+        ->check(whole_number(0, 1024));
     cmd->add_option("--format", o->format,
                     "obj: OBJ + MTL + scene file, diffuse and emissive surfaces only (Cycles); mitsuba: a Mitsuba 3 "
                     "scene dictionary (JSON) and one OBJ per material, every material and light (Mitsuba references)")

@@ -1,6 +1,7 @@
 // clpath: an OpenCL Monte Carlo path tracer. Subcommands: render, devices, compare, bench, export (and view with the viewer built in).
 #include <cstdio>
 #include <map>
+#include <string>
 
 #include "cli/commands.hpp"
 #include "cli/mpi_launch.hpp"
@@ -42,11 +43,23 @@ int run(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // --help and --version are not errors; CLI11 prints them.
+        if (e.get_exit_code() == 0) return app.exit(e);
+        // Every other message in the one form users and scripts can match.
+        std::string where = "clpath";
+        for (CLI::App* sub = &app; sub && !sub->get_subcommands().empty();) {
+            sub = sub->get_subcommands().front();
+            where += " " + sub->get_name();
+        }
+        std::fprintf(stderr, "clpath: error: %s\n(see '%s --help')\n", e.what(), where.c_str());
+        return 2;
     }
     try {
         for (auto* sub : app.get_subcommands())
             if (auto it = commands.find(sub); it != commands.end()) return it->second();
+        return 2;
+    } catch (const clpath::UsageError& e) {
+        std::fprintf(stderr, "clpath: error: %s%s\n", clpath::rank_prefix().c_str(), e.what());
         return 2;
     } catch (const clpath::Error& e) {
         std::fprintf(stderr, "clpath: error: %s%s\n", clpath::rank_prefix().c_str(), e.what());
@@ -55,7 +68,7 @@ int run(int argc, char** argv) {
         std::fprintf(stderr, "clpath: error: out of host memory\n");
         return 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "clpath: internal error: %s\n", e.what());
+        std::fprintf(stderr, "clpath: error: internal: %s\n", e.what());
         return 1;
     }
 }

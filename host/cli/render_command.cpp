@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -8,8 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "bvh/bvh.hpp"
 #include "cl/context.hpp"
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
+#include "cli/scene_overrides.hpp"
+#include "image/tone_map.hpp"
 #include "cli/progress.hpp"
 #include "image/image.hpp"
 #include "cl/device_set.hpp"
@@ -44,6 +49,10 @@ struct RenderOptions {
     std::uint32_t chunk_samples = 0;
     double checkpoint_seconds = 0;
     std::string checkpoint_file, resume;
+    float exposure = 0;
+    std::string tonemap = "clamp";
+    std::optional<std::string> camera, env;
+    bool no_ground = false;
     bool no_partial = false;
 };
 
@@ -59,12 +68,28 @@ std::vector<std::uint8_t> srgb8_from_linear(const Image& img) {
     return out;
 }
 
+bool is_bare_mesh(const std::string& spec) {
+    std::string ext = std::filesystem::path(spec).extension().string();
+    for (auto& c : ext) c = char(std::tolower((unsigned char)c));
+    return ext == ".obj" || ext == ".gltf" || ext == ".glb";
+}
+
 int run_render(const RenderOptions& o) {
     // Everything that can be checked before rendering is checked first.
     const auto load_start = std::chrono::steady_clock::now();
     LoadOptions load;
     load.gltf_camera = o.gltf_camera;
+    load.presentation.ground = !o.no_ground;
+    if (o.env) load.presentation.environment = parse_env_option(*o.env);
+    if (o.no_ground && !is_bare_mesh(o.scene))
+        std::fprintf(stderr, "clpath: warning: --no-ground has no effect on %s: only a bare mesh gets a ground\n",
+                     o.scene.c_str());
     Scene scene = load_scene(o.scene, load);
+    if (load.presentation.environment) scene.environment = *load.presentation.environment;
+    if (o.camera) scene.camera = apply_camera_option(*o.camera, scene.camera);
+    DisplaySettings display;
+    display.exposure_stops = o.exposure;
+    display.tone_map = parse_tone_map(o.tonemap);
     const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
     for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
     if (!o.quiet)
@@ -118,6 +143,8 @@ int run_render(const RenderOptions& o) {
     ChunkedRenderResult result;
     try {
         result = render_in_chunks(scene, settings, devices, co, mpi);
+    } catch (const UsageError&) {
+        throw;  // about the command line or the environment, not the scene
     } catch (const Error& e) {
         throw Error(o.scene + ": " + e.what());
     }
@@ -134,7 +161,8 @@ int run_render(const RenderOptions& o) {
     if (done_spp == 0) throw Error("no sample was finished, so there is no image to write");
     RenderedImage image;
     image.linear = result.film.mean();
-    image.srgb8 = srgb8_from_linear(image.linear);
+    // PNG gets the display transform (exposure, tone map); EXR and PFM keep the linear radiance.
+    image.srgb8 = display.is_identity() ? srgb8_from_linear(image.linear) : display_srgb8(image.linear, display);
     for (const auto& out : outputs) {
         write_image(out, image);
         if (!o.quiet) std::fprintf(stderr, "clpath: wrote %s\n", out.c_str());
@@ -179,10 +207,10 @@ Command add_render_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--gltf-camera", o->gltf_camera, "A glTF model's camera, by name or index (default: the first)");
     cmd->add_option("--spp", o->spp, "Samples per pixel (default: the scene's, else 64; unlimited with --time)")
-        ->check(CLI::Range(std::uint64_t(1), kMaxSamplesPerPixel));
-    cmd->add_option("--time", o->time_limit, "Stop after this many seconds")->check(CLI::PositiveNumber);
+        ->check(whole_number(1, kMaxSamplesPerPixel));
+    cmd->add_option("--time", o->time_limit, "Stop after this many seconds")->check(real_number(0, 31536000, true));
     cmd->add_option("--max-depth", o->max_depth, "Maximum bounces (0: emitters only; default 16)")
-        ->check(CLI::Range(0, 1024));
+        ->check(whole_number(0, 1024));
     cmd->add_option("--rr", o->rr, "Russian roulette: throughput (default, unbiased), depth (the thesis rule), none")
         ->check(CLI::IsMember(rr_rule_names()));
     cmd->add_option("--integrator,-i", o->integrator, "Integrator: path (default: NEE + MIS), path-bsdf, ao, "
@@ -193,33 +221,48 @@ Command add_render_command(CLI::App& app) {
         ->check(CLI::IsMember(hemisphere_names()))
         ->capture_default_str();
     cmd->add_option("--ao-distance", o->ao_distance, "Ambient occlusion ray length (default: 1/10 of the scene size)")
-        ->check(CLI::PositiveNumber);
+        ->check(real_number(0, 1e9, true));
     cmd->add_flag("--all-features", o->all_features,
                   "Compile every material, light and integrator feature in (for comparison with the specialised kernels)");
     cmd->add_option("--rr-min-depth", o->rr_min_depth, "Bounces before throughput roulette starts")
-        ->check(CLI::Range(0, 1024))
+        ->check(whole_number(0, 1024))
         ->capture_default_str();
-    cmd->add_option("--seed", o->seed, "Random seed (default 0)");
-    cmd->add_option("--width", o->width, "Image width (default: the scene's)")->check(CLI::Range(1, 16384));
-    cmd->add_option("--height", o->height, "Image height (default: the scene's)")->check(CLI::Range(1, 16384));
+    cmd->add_option("--seed", o->seed, "Random seed (default 0)")->check(whole_number(0, 4294967295u));
+    cmd->add_option("--width", o->width, "Image width (default: the scene's)")->check(whole_number(1, 16384));
+    cmd->add_option("--height", o->height, "Image height (default: the scene's)")->check(whole_number(1, 16384));
+    cmd->add_option("--exposure", o->exposure, "PNG only: brighten by this many stops (radiance x 2^stops)")
+        ->check(real_number(-20, 20))
+        ->capture_default_str();
+    cmd->add_option("--tonemap", o->tonemap,
+                    "PNG only: clamp (clip at white), reinhard (L/(1+L) on luminance) or aces (Narkowicz's "
+                    "fitted ACES filmic curve); EXR and PFM stay linear")
+        ->check(CLI::IsMember(tone_map_names()))
+        ->capture_default_str();
+    cmd->add_option("--camera", o->camera,
+                    "Camera override, any of 'from=X,Y,Z;to=X,Y,Z;fov=DEGREES;up=X,Y,Z' (quote it: ';' is a "
+                    "shell separator)");
+    cmd->add_option("--env", o->env,
+                    "Environment override: a colour R,G,B (or one grey value) or an equirectangular .hdr/.exr "
+                    "image; for a bare mesh it replaces the default sky and sun");
+    cmd->add_flag("--no-ground", o->no_ground, "A bare mesh gets no ground plane");
     cmd->add_option("--out,-o", o->outputs,
                     "Output image, .png (8-bit sRGB), .exr or .pfm (linear float); repeatable "
                     "(default: out/SCENE.png and out/SCENE.exr)");
     cmd->add_option("--device,-d", o->device,
                     "OpenCL device(s): an index or name substring (see 'clpath devices'), a comma-separated list "
-                    "of them, or 'all'");
+                    "of them, or 'all'; cpu or gpu picks the first device of that type");
     cmd->add_option("--chunk", o->chunk_samples,
                     "Samples per chunk handed to a device (default: spp/64, 1 to 64; 4 with --time alone)")
-        ->check(CLI::Range(1u, 1u << 20));
+        ->check(whole_number(1, 1u << 20));
     cmd->add_option("--checkpoint", o->checkpoint_seconds, "Save the running sums every this many seconds")
-        ->check(CLI::Range(0.001, 1e9));
+        ->check(real_number(0.001, 1e9));
     cmd->add_option("--checkpoint-file", o->checkpoint_file, "Where checkpoints go (default: the first output + .checkpoint)");
     cmd->add_option("--resume", o->resume, "Continue the render saved in this checkpoint (same scene, --spp, --chunk)");
     cmd->add_flag("--no-partial", o->no_partial, "On Ctrl-C or SIGTERM, write nothing (default: the samples so far)");
     cmd->add_option("--leaf-size", o->leaf_size, "BVH: most triangles per leaf")
-        ->check(CLI::Range(1, 64))
+        ->check(whole_number(1, 64))
         ->capture_default_str();
-    cmd->add_option("--bins", o->bins, "BVH: SAH bins per axis")->check(CLI::Range(2, 256))->capture_default_str();
+    cmd->add_option("--bins", o->bins, "BVH: SAH bins per axis")->check(whole_number(2, 256))->capture_default_str();
     cmd->add_option("--accel", o->accel, "Acceleration structure: bvh, or flat (one box per object, the thesis "
                     "renderer's; a baseline)")
         ->check(CLI::IsMember(accel_names()))

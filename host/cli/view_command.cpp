@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "render/renderer.hpp"
 #include "render/settings.hpp"
 #include "scene/builtin_scenes.hpp"
@@ -21,30 +22,30 @@ Command add_view_command(CLI::App& app) {
     cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj) or built-in scene (" + names + ")")
         ->capture_default_str();
     cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
-    cmd->add_option("--width", o->width, "Window width (default: the scene's image width)")->check(CLI::Range(1, 16384));
+    cmd->add_option("--width", o->width, "Window width (default: the scene's image width)")->check(whole_number(1, 16384));
     cmd->add_option("--height", o->height, "Window height (default: the scene's image height)")
-        ->check(CLI::Range(1, 16384));
+        ->check(whole_number(1, 16384));
     cmd->add_option("--render-scale", o->render_scale,
                     "Render pixels per window pixel: below 1 for speed on a slow device")
-        ->check(CLI::Range(0.05, 4.0))
+        ->check(real_number(0.05, 4.0))
         ->capture_default_str();
     cmd->add_option("--frame-ms", o->frame_ms, "Rendering budget per frame, in milliseconds")
-        ->check(CLI::Range(1.0, 10000.0))
+        ->check(real_number(1, 10000))
         ->capture_default_str();
     cmd->add_option("--max-spp", o->max_spp, "Stop refining at this many samples per pixel (default: never)")
-        ->check(CLI::Range(std::uint64_t(1), kMaxSamplesPerPixel));
+        ->check(whole_number(1, kMaxSamplesPerPixel));
     cmd->add_option("--integrator,-i", o->integrator, "Integrator to start with (keys 1-7 switch)")
         ->check(CLI::IsMember(integrator_names()));
     cmd->add_option("--max-depth", o->max_depth, "Maximum bounces (default: the scene's, else 16)")
-        ->check(CLI::Range(0, 1024));
-    cmd->add_option("--seed", o->seed, "Random seed (default: the scene's, else 0)");
-    cmd->add_option("--exposure", o->exposure, "Exposure to start with (keys - and = change it)")
-        ->check(CLI::PositiveNumber)
+        ->check(whole_number(0, 1024));
+    cmd->add_option("--seed", o->seed, "Random seed (default: the scene's, else 0)")->check(whole_number(0, 4294967295u));
+    cmd->add_option("--exposure", o->exposure, "Exposure to start with, a multiplier (keys - and = change it)")
+        ->check(real_number(0, 1000000, true))
         ->capture_default_str();
     cmd->add_option("--screenshot-dir", o->screenshot_dir, "Folder for screenshots (key P) and window captures (F12)")
         ->capture_default_str();
     cmd->add_option("--frames", o->frames, "Exit after this many frames (for tests and captures)")
-        ->check(CLI::PositiveNumber);
+        ->check(whole_number(1, 1000000000));
     cmd->add_option("--script", o->script,
                     "Scripted input, one command a line: wait N, wait-spp N, key K, hold K N, drag DX DY, "
                     "scroll S, screenshot, capture FILE, resize W H, camera, quit")

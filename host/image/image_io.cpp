@@ -37,21 +37,27 @@ float srgb_decode(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0
 }  // namespace
 
 void check_output_path(const std::string& path) {
+    std::error_code ec;
+    // A folder first: its "extension" would otherwise read as an unknown format.
+    if (!path.empty() && (path.back() == '/' || fs::is_directory(path, ec))) {
+        const std::string dir = path.back() == '/' ? path : path + "/";
+        const bool exists = fs::is_directory(path, ec);
+        throw UsageError("output " + path + ": is a folder" + (exists ? "" : " name (and no such folder exists)") +
+                         "; name an image file in it, such as " + dir + "image.png");
+    }
     const std::string ext = extension(path);
     if (ext != ".png" && ext != ".exr" && ext != ".pfm")
-        throw Error("output " + path + ": unknown image format '" + ext + "' (use .png, .exr or .pfm)");
+        throw UsageError("output " + path + ": unknown image format '" + ext + "' (use .png, .exr or .pfm)");
 #ifndef CLPATH_WITH_OIIO
     if (ext != ".pfm")
-        throw Error("output " + path + ": this build has no OpenImageIO, so it writes .pfm only");
+        throw UsageError("output " + path + ": this build has no OpenImageIO, so it writes .pfm only");
 #endif
     fs::path dir = fs::path(path).parent_path();
     if (dir.empty()) dir = ".";
-    std::error_code ec;
     if (!fs::is_directory(dir, ec))
-        throw Error("output " + path + ": folder " + dir.string() + " does not exist");
+        throw UsageError("output " + path + ": folder " + dir.string() + " does not exist");
     if (::access(dir.c_str(), W_OK) != 0)
-        throw Error("output " + path + ": folder " + dir.string() + " is not writable");
-    if (fs::is_directory(path, ec)) throw Error("output " + path + ": is a folder");
+        throw UsageError("output " + path + ": folder " + dir.string() + " is not writable");
 }
 
 void write_pfm(const std::string& path, const Image& img) {

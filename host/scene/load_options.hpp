@@ -6,6 +6,7 @@
 
 #include "image/texture_io.hpp"
 #include "scene/obj_mesh.hpp"
+#include "scene/presentation.hpp"
 
 namespace clpath {
 
@@ -27,6 +28,8 @@ struct LoadOptions {
     // Which camera of a glTF file to use: its name, or its index in the
     // file's cameras; empty: the first one the node hierarchy places.
     std::string gltf_camera;
+    // How a bare mesh (no camera, no lights of its own) is presented.
+    PresentationOptions presentation;
 };
 
 }  // namespace clpath

@@ -1,6 +1,7 @@
 #include "scene/obj_mesh.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -11,6 +12,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include "scene/polygon_triangulation.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -163,6 +165,39 @@ Scan scan_obj(const std::string& text, const std::string& file) {
     return s;
 }
 
+// The MTL statements that take numbers, checked as scan_obj checks the OBJ's:
+// tinyobjloader would read "Ns abc" as 0.
+void scan_mtl(const std::string& text, const std::string& file) {
+    static const char* const kNumeric[] = {"Ka", "Kd", "Ks", "Ke", "Kt", "Tf", "Ni", "Ns", "d", "Tr",
+                                           "illum", "Pr", "Pm", "Ps", "Pc", "Pcr", "aniso", "anisor"};
+    int line_no = 0;
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+        ++line_no;
+        std::size_t nl = text.find('\n', pos);
+        if (nl == std::string::npos) nl = text.size();
+        std::string_view rest(text.data() + pos, nl - pos);
+        pos = nl + 1;
+        const std::string_view key = next_token(rest);
+        bool numeric = false;
+        for (const char* k : kNumeric) numeric = numeric || key == k;
+        if (!numeric) continue;
+        auto fail = [&](const std::string& what) {
+            throw Error(file + ":" + std::to_string(line_no) + ": " + std::string(key) + ": " + what);
+        };
+        std::size_t n = 0;
+        for (std::string_view tok = next_token(rest); !tok.empty() && tok[0] != '#'; tok = next_token(rest)) {
+            if (tok == "spectral" || tok == "xyz") fail("the '" + std::string(tok) + "' form is not supported (give r g b)");
+            double d;
+            if (!parse_double(tok, d)) fail("'" + std::string(tok) + "' is not a number");
+            if (!std::isfinite(d) || std::fabs(d) > 3.0e38) fail("'" + std::string(tok) + "' is not a finite number");
+            if (key == "illum" && d != std::floor(d)) fail("'" + std::string(tok) + "' is not a whole number");
+            ++n;
+        }
+        if (n == 0) fail("needs a number");
+    }
+}
+
 // tinyobjloader also parses statements clpath never uses (skin weights vw,
 // vp, lines and points, tags, smoothing groups, object and group names),
 // some unchecked: a vw joint id of 1e38 is converted to int out of range,
@@ -191,52 +226,80 @@ std::string fmt3(const tinyobj::real_t* v) {
 
 glm::vec3 vec(const tinyobj::real_t* v) { return {float(v[0]), float(v[1]), float(v[2])}; }
 
-// The clpath material an MTL entry stands for; docs/scene-format.md lists the rules.
-Material from_mtl(const tinyobj::material_t& m, const std::string& mtl_file) {
+// The clpath material an MTL entry stands for; docs/scene-format.md lists the
+// rules. The kind is chosen first; a value out of range is an error on a
+// channel that kind reads, and a warning (the value ignored) on one it does
+// not, as other tools read such files (Ni 0 on an opaque material).
+Material from_mtl(const tinyobj::material_t& m, const std::string& mtl_file, std::vector<std::string>& warnings) {
     const std::string where = mtl_file + ": material '" + m.name + "': ";
-    auto check3 = [&](const char* key, const tinyobj::real_t* v, double lo, double hi) {
+    const int illum = m.illum;
+    // What decides the kind is always read, so always checked.
+    auto in01 = [](double v) { return std::isfinite(v) && v >= 0 && v <= 1; };
+    if (!in01(m.dissolve)) throw Error(where + "d " + std::to_string(m.dissolve) + " is out of range (must be in [0, 1])");
+    if (!in01(m.metallic)) throw Error(where + "Pm " + std::to_string(m.metallic) + " is out of range (must be in [0, 1])");
+    enum class Kind { Dielectric, Metal, Mirror, Diffuse };
+    const Kind kind = (m.dissolve < 1 || illum == 4 || illum == 6 || illum == 7 || illum == 9) ? Kind::Dielectric
+                      : m.metallic >= 0.5                                                    ? Kind::Metal
+                      : (illum == 3 || illum == 5 || illum == 8)                             ? Kind::Mirror
+                                                                                             : Kind::Diffuse;
+    const bool rough_used = kind != Kind::Diffuse;
+    auto report = [&](bool used, const std::string& what) {
+        if (used) throw Error(where + what);
+        warnings.push_back(where + what + "; the material does not use it, so it is ignored");
+    };
+    auto check3 = [&](const char* key, const tinyobj::real_t* v, double hi, bool used) {
         for (int i = 0; i < 3; ++i)
-            if (!(std::isfinite(v[i]) && v[i] >= lo && v[i] <= hi))
-                throw Error(where + key + " " + fmt3(v) + " is out of range (each must be in [" +
-                            std::to_string(int(lo)) + ", " + (hi > 1 ? std::string("inf") : "1") + "])");
+            if (!(std::isfinite(v[i]) && v[i] >= 0 && v[i] <= hi)) {
+                report(used, std::string(key) + " " + fmt3(v) + " is out of range (each must be in [0, " +
+                                 (hi > 1 ? std::string("inf") : "1") + "])");
+                return false;
+            }
+        return true;
     };
-    auto check1 = [&](const char* key, double v, double lo, double hi, bool lo_open = false) {
-        if (!(std::isfinite(v) && (lo_open ? v > lo : v >= lo) && v <= hi))
-            throw Error(where + key + " " + std::to_string(v) + " is out of range");
+    auto check1 = [&](const char* key, double v, double lo, double hi, bool lo_open, bool used) {
+        if (std::isfinite(v) && (lo_open ? v > lo : v >= lo) && v <= hi) return true;
+        report(used, std::string(key) + " " + std::to_string(v) + " is out of range (must be in " +
+                         (lo_open ? "(" : "[") + std::to_string(int(lo)) + ", " + (hi > 1 ? "inf" : "1") + "])");
+        return false;
     };
-    check3("Kd", m.diffuse, 0, 1);
-    check3("Ks", m.specular, 0, 1);
-    check3("Tf", m.transmittance, 0, 1);
-    check3("Ke", m.emission, 0, 1e30);
-    check1("Ns", m.shininess, 0, 1e30);
-    check1("Ni", m.ior, 0, 1e30, true);
-    check1("d", m.dissolve, 0, 1);
-    check1("Pr", m.roughness, 0, 1);
-    check1("Pm", m.metallic, 0, 1);
+    const bool kd_ok = check3("Kd", m.diffuse, 1, kind == Kind::Diffuse || kind == Kind::Metal);
+    const bool ks_ok = check3("Ks", m.specular, 1, kind == Kind::Mirror);
+    const bool tf_ok = check3("Tf", m.transmittance, 1, kind == Kind::Dielectric);
+    check3("Ke", m.emission, 1e30, true);
+    const bool ns_ok = check1("Ns", m.shininess, 0, 1e30, false, rough_used && kind != Kind::Dielectric);
+    const bool ni_ok = check1("Ni", m.ior, 0, 1e30, true, kind == Kind::Dielectric);
+    const bool pr_ok = check1("Pr", m.roughness, 0, 1, false, rough_used);
 
     // Pr if given; else a Phong exponent turned into GGX roughness by the usual
     // Beckmann match, alpha = sqrt(2 / (Ns + 2)), and roughness = sqrt(alpha).
     // Ns <= 1 is tinyobjloader's default (no Ns line) and Ns >= 1000 is a mirror.
-    float roughness = float(m.roughness);
-    if (roughness == 0 && m.shininess > 1 && m.shininess < 1000)
+    float roughness = pr_ok ? float(m.roughness) : 0.0f;
+    if (roughness == 0 && ns_ok && m.shininess > 1 && m.shininess < 1000)
         roughness = float(std::pow(2.0 / (m.shininess + 2.0), 0.25));
-    const glm::vec3 kd = vec(m.diffuse), ks = vec(m.specular), tf = vec(m.transmittance);
+    const glm::vec3 kd = kd_ok ? vec(m.diffuse) : glm::vec3(0.8f), ks = ks_ok ? vec(m.specular) : glm::vec3(0),
+                    tf = tf_ok ? vec(m.transmittance) : glm::vec3(0);
     const bool has_ks = ks.x > 0 || ks.y > 0 || ks.z > 0;
 
     Material out;
-    const int illum = m.illum;
-    if (m.dissolve < 1 || illum == 4 || illum == 6 || illum == 7 || illum == 9) {
+    switch (kind) {
+    case Kind::Dielectric: {
         // Ni 1 is the MTL default, and a glass of index 1 would be invisible.
-        const float ior = m.ior != 1 ? float(m.ior) : 1.5f;
+        const float ior = ni_ok && m.ior != 1 ? float(m.ior) : 1.5f;
         const bool has_tf = tf.x > 0 || tf.y > 0 || tf.z > 0;
-        out = dielectric(ior, float(m.roughness), has_tf ? tf : glm::vec3(1));
-    } else if (m.metallic >= 0.5) {
+        out = dielectric(ior, pr_ok ? float(m.roughness) : 0.0f, has_tf ? tf : glm::vec3(1));
+        break;
+    }
+    case Kind::Metal:
         out = conductor(kd, roughness);
-    } else if (illum == 3 || illum == 5 || illum == 8) {
+        break;
+    case Kind::Mirror: {
         const glm::vec3 tint = has_ks ? ks : glm::vec3(1);
         out = roughness > 0 ? conductor(tint, roughness) : mirror(tint);
-    } else {
+        break;
+    }
+    case Kind::Diffuse:
         out = diffuse(kd);
+        break;
     }
     for (int i = 0; i < 3; ++i) out.emission[i] = float(m.emission[i]);
     return out;
@@ -303,9 +366,13 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
         try {
             mtl_text = read_file(path);
         } catch (const Error& e) {
-            throw Error(file + ":" + std::to_string(lib.line) + ": mtllib '" + lib.name + "': " + e.what());
+            // As Blender and assimp do: the mesh still loads, its materials grey.
+            mesh.warnings.push_back(file + ":" + std::to_string(lib.line) + ": mtllib '" + lib.name + "': " +
+                                    e.what() + "; the materials it would define are the default grey");
+            continue;
         }
         if (mtl_text.find('\0') != std::string::npos) throw Error(path + ": contains a NUL byte (is this an MTL file?)");
+        scan_mtl(mtl_text, path);
         std::vector<tinyobj::material_t> got;
         std::map<std::string, int> got_map;
         std::istringstream in(mtl_text);
@@ -317,7 +384,7 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
             ObjMaterial om;
             om.name = m.name;
             om.defined = true;
-            om.material = from_mtl(m, path);
+            om.material = from_mtl(m, path, mesh.warnings);
             if (!m.diffuse_texname.empty() || !m.alpha_texname.empty()) {
                 // A textured surface: the glTF material, base colour from map_Kd
                 // (Kd is the colour where the map is absent), metallic Pm,
@@ -372,7 +439,9 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
     const bool need_tag = scan.first_usemtl_line && (!scan.first_mtllib_line || scan.first_usemtl_line < scan.first_mtllib_line);
     const std::string statements = statements_clpath_reads(text);
     std::istringstream in(need_tag ? std::string("mtllib ") + kMaterialsTag + "\n" + statements : statements);
-    const bool ok = tinyobj::LoadObj(&attrib, &shapes, &unused, &warn, &err, &in, &reader, true, false);
+    // Faces come whole (triangulate = false): tinyobjloader cuts a quad along
+    // its shorter diagonal, which lies outside a concave one.
+    const bool ok = tinyobj::LoadObj(&attrib, &shapes, &unused, &warn, &err, &in, &reader, false, false);
     if (!ok || !err.empty()) throw Error(file + ": " + (err.empty() ? "tinyobjloader could not read it" : err));
     if (attrib.vertices.size() != scan.v * 3 || attrib.normals.size() != scan.vn * 3)
         throw Error(file + ": internal: tinyobjloader read a different number of vertices than the line check");
@@ -382,6 +451,8 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
     const std::size_t nt = attrib.texcoords.size() / 2;
     const bool with_colors = attrib.colors.size() == attrib.vertices.size() &&
                              std::any_of(attrib.colors.begin(), attrib.colors.end(), [](tinyobj::real_t c) { return c != 1; });
+    std::vector<glm::vec3> polygon;
+    std::vector<std::array<std::size_t, 3>> cut;
     for (const auto& shape : shapes) {
         const auto& m = shape.mesh;
         std::size_t first = 0;
@@ -390,13 +461,27 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
             if (first + corners > m.indices.size()) throw Error(file + ": internal: tinyobjloader face list is short");
             const int mat = f < m.material_ids.size() ? m.material_ids[f] : -1;
             if (mat >= int(mesh.materials.size())) throw Error(file + ": internal: material id out of range");
-            // Triangulated already; a fan covers whatever tinyobjloader left whole.
-            for (std::size_t k = 1; k + 1 < corners; ++k) {
-                for (std::size_t c : {std::size_t(0), k, k + 1}) {
+            for (std::size_t c = 0; c < corners; ++c) {
+                const tinyobj::index_t idx = m.indices[first + c];
+                if (idx.vertex_index < 0 || std::size_t(idx.vertex_index) >= nv)
+                    throw Error(file + ": internal: vertex index out of range after the line check");
+            }
+            auto corner_position = [&](std::size_t c) {
+                return vec(&attrib.vertices[3 * std::size_t(m.indices[first + c].vertex_index)]);
+            };
+            polygon.clear();
+            for (std::size_t c = 0; c < corners; ++c) polygon.push_back(corner_position(c));
+            // Triangles, nearly every face of most files, skip the polygon cutter.
+            static const std::vector<std::array<std::size_t, 3>> kTriangle{{0, 1, 2}};
+            const std::vector<std::array<std::size_t, 3>>* tris = &kTriangle;
+            if (corners != 3) {
+                cut = triangulate_polygon(polygon);
+                tris = &cut;
+            }
+            for (const auto& tri : *tris) {
+                for (std::size_t c : tri) {
                     const tinyobj::index_t idx = m.indices[first + c];
-                    if (idx.vertex_index < 0 || std::size_t(idx.vertex_index) >= nv)
-                        throw Error(file + ": internal: vertex index out of range after the line check");
-                    mesh.vertices.push_back(vec(&attrib.vertices[3 * std::size_t(idx.vertex_index)]));
+                    mesh.vertices.push_back(polygon[c]);
                     if (nt > 0) {
                         const bool has = idx.texcoord_index >= 0 && std::size_t(idx.texcoord_index) < nt;
                         const tinyobj::real_t* t = has ? &attrib.texcoords[2 * std::size_t(idx.texcoord_index)] : nullptr;

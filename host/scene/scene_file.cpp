@@ -358,11 +358,14 @@ private:
                 auto it = material_index_.find(name);
                 index[i] = it != material_index_.end() ? it->second
                                                        : mesh_material(name, obj_material_with_textures(scene_, om, options_));
+            } else {
+                // As other tools load such a file: grey, with a warning.
+                scene_.warnings.push_back(path + ":" + std::to_string(om.usemtl_line) + ": usemtl '" + om.name +
+                                          "': no .mtl file defines it, and " + label +
+                                          " gives no material for it (\"material\" or \"materials\"); it is the "
+                                          "default grey");
+                index[i] = mesh_material(path + ":(default)", diffuse(glm::vec3(0.8f)));
             }
-            else
-                throw Error(path + ":" + std::to_string(om.usemtl_line) + ": usemtl '" + om.name +
-                            "': no .mtl file defines it, and " + label +
-                            " gives no material for it (\"material\" or \"materials\")");
         }
         std::vector<std::uint32_t> tri_mat(mesh.triangle_count());
         bool needs_default = false;
@@ -534,10 +537,14 @@ Scene obj_scene(const std::string& file, const LoadOptions& options) {
     for (std::size_t i = 0; i < mesh.materials.size(); ++i) {
         const ObjMaterial& om = mesh.materials[i];
         if (!used[i] && textured(om)) continue;
-        if (!om.defined)
-            throw Error(file + ":" + std::to_string(om.usemtl_line) + ": usemtl '" + om.name +
-                        "': no .mtl file defines it");
-        index[i] = s.add_material(om.name, obj_material_with_textures(s, om, options));
+        if (om.defined) {
+            index[i] = s.add_material(om.name, obj_material_with_textures(s, om, options));
+            continue;
+        }
+        // As Blender and assimp load such a file: grey, with a warning.
+        s.warnings.push_back(file + ":" + std::to_string(om.usemtl_line) + ": usemtl '" + om.name +
+                             "': no .mtl file defines it; it is the default grey");
+        index[i] = s.add_material(om.name, diffuse(glm::vec3(0.8f)));
     }
     std::vector<std::uint32_t> tri_mat(mesh.triangle_count());
     std::optional<std::uint32_t> grey;
@@ -556,11 +563,7 @@ Scene obj_scene(const std::string& file, const LoadOptions& options) {
     builder.finish();
     if (s.triangle_count() == 0) throw Error(file + ": every triangle is degenerate (an empty scene)");
 
-    bool lit = false;
-    for (auto m : s.triangle_material) lit = lit || emits(s.materials[m]);
-    if (!lit) s.environment.color = glm::vec3(1);
-
-    s.camera = framing_camera(s);
+    present_bare_mesh(s, options.presentation);
     return s;
 }
 

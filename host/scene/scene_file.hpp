@@ -14,8 +14,8 @@ namespace clpath {
 // inside it are relative to its folder.
 Scene parse_scene_file(const std::string& text, const std::string& file, const LoadOptions& options = {});
 
-// A bare OBJ as a scene: its MTL materials (grey diffuse where it names none),
-// a camera framing it from -z, and a white environment when nothing in it emits.
+// A bare OBJ as a scene: its MTL materials (grey diffuse where it names none)
+// in the default presentation (scene/presentation.hpp): camera, ground, sky, sun.
 Scene obj_scene(const std::string& file, const LoadOptions& options = {});
 
 }  // namespace clpath

@@ -11,4 +11,10 @@ struct Error : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// Bad usage: an option or environment value the program cannot accept (as
+// opposed to a run that failed). main() exits 2 for these, 1 for the rest.
+struct UsageError : Error {
+    using Error::Error;
+};
+
 }  // namespace clpath

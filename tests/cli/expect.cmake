@@ -1,5 +1,6 @@
 # Runs one command and checks its exit status and output:
 #   cmake -DCMD="a;b;c" -DEXPECT_FAIL=1 -DEXPECT_OUTPUT=regex -DFORBID_FILE=path -P expect.cmake
+# Optional: -DEXPECT_RC=N (the exact exit status), -DEXPECT_FILE=path (must exist after).
 execute_process(COMMAND ${CMD} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 set(all "${out}${err}")
 message("${all}")
@@ -12,6 +13,12 @@ if(EXPECT_FAIL)
     endif()
 elseif(NOT rc EQUAL 0)
     message(FATAL_ERROR "expected exit 0, got ${rc}")
+endif()
+if(DEFINED EXPECT_RC AND NOT EXPECT_RC STREQUAL "" AND NOT rc STREQUAL "${EXPECT_RC}")
+    message(FATAL_ERROR "expected exit status ${EXPECT_RC}, got '${rc}'")
+endif()
+if(DEFINED EXPECT_FILE AND NOT EXPECT_FILE STREQUAL "" AND NOT EXISTS "${EXPECT_FILE}")
+    message(FATAL_ERROR "${EXPECT_FILE} was not written")
 endif()
 if(DEFINED EXPECT_OUTPUT AND NOT all MATCHES "${EXPECT_OUTPUT}")
     message(FATAL_ERROR "output does not match '${EXPECT_OUTPUT}'")

@@ -215,8 +215,11 @@ TEST(ObjMeshBad, TooFewVerticesPerFaceOrCoordinates) {
     EXPECT_EQ(parse_error("v 1 2\n"), "m/mesh.obj:1: vertex needs at least 3 numbers, got 2");
 }
 
-TEST(ObjMeshBad, MissingMaterialLibrary) {
-    EXPECT_EQ(parse_error("# x\nmtllib nowhere.mtl\n"), "m/mesh.obj:2: mtllib 'nowhere.mtl': m/nowhere.mtl: no such file");
+TEST(ObjMesh, MissingMaterialLibraryIsAWarning) {
+    const ObjMesh m = parse("# x\nmtllib nowhere.mtl\n");
+    ASSERT_EQ(m.warnings.size(), 1u);
+    EXPECT_EQ(m.warnings[0], "m/mesh.obj:2: mtllib 'nowhere.mtl': m/nowhere.mtl: no such file; the materials it would "
+                             "define are the default grey");
 }
 
 TEST(ObjMeshBad, BinaryGarbage) {

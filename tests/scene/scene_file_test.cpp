@@ -189,12 +189,14 @@ TEST(SceneFile, SceneMaterialsOverrideTheMeshOwn) {
               "scenes/s.json: objects[0].materials.green: the mesh scenes/m.obj uses no material named 'green'");
 }
 
-TEST(SceneFile, UndefinedUsemtlNeedsTheSceneToGiveIt) {
+TEST(SceneFile, UndefinedUsemtlIsGreyWithAWarningUnlessTheSceneGivesIt) {
     MemoryFiles files;
     files.files["scenes/m.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl paint\nf 1 2 3\n";
-    EXPECT_EQ(parse_error(scene_with(R"({"type": "mesh", "file": "m.obj"})"), files),
-              "scenes/m.obj:4: usemtl 'paint': no .mtl file defines it, and scenes/s.json: objects[0] gives no "
-              "material for it (\"material\" or \"materials\")");
+    const Scene grey = parse(scene_with(R"({"type": "mesh", "file": "m.obj"})"), files);
+    ASSERT_FALSE(grey.warnings.empty());
+    EXPECT_EQ(grey.warnings[0], "scenes/m.obj:4: usemtl 'paint': no .mtl file defines it, and scenes/s.json: objects[0] "
+                                "gives no material for it (\"material\" or \"materials\"); it is the default grey");
+    EXPECT_EQ(grey.material_names[grey.triangle_material[0]], "scenes/m.obj:(default)");
     const Scene s = parse(scene_with(R"({"type": "mesh", "file": "m.obj", "materials": {"paint": "white"}})"), files);
     EXPECT_EQ(s.triangle_material[0], 0u);
 }
@@ -388,11 +390,12 @@ TEST(LoadScene, BareObjIsFramedAndLit) {
     MemoryFiles files;
     files.files["m.obj"] = "v 0 0 0\nv 2 0 0\nv 0 2 0\nf 1 2 3\n";
     const Scene s = load_scene("m.obj", files.options());
-    EXPECT_EQ(s.triangle_count(), 1u);
+    EXPECT_EQ(s.triangle_count(), 1u + 2u);  // and the presentation's ground
     EXPECT_EQ(s.material_names[0], "(default)");
-    EXPECT_TRUE(s.environment.emits());  // nothing in it emits: a white sky
+    EXPECT_TRUE(s.environment.emits());  // nothing in it emits: a sky and a sun
+    EXPECT_EQ(s.lights.size(), 1u);
     EXPECT_EQ(s.camera.target, glm::vec3(1, 1, 0));
-    EXPECT_LT(s.camera.eye.z, 0.0f);
+    EXPECT_GT(s.camera.eye.z, 0.0f);  // the triangle faces +z, and is seen from there
     EXPECT_NO_THROW(camera_data(s.camera));
 }
 

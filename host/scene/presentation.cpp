@@ -1,0 +1,133 @@
+#include "scene/presentation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "util/error.hpp"
+
+namespace clpath {
+namespace {
+
+struct Bounds {
+    glm::vec3 lo{INFINITY}, hi{-INFINITY};
+    glm::vec3 centre() const { return (lo + hi) * 0.5f; }
+    float radius() const { return std::max(0.5f * glm::length(hi - lo), 1e-6f); }
+};
+
+Bounds bounds_of(const Scene& s) {
+    Bounds b;
+    for (const auto& v : s.vertices) {
+        b.lo = glm::min(b.lo, v);
+        b.hi = glm::max(b.hi, v);
+    }
+    return b;
+}
+
+glm::vec3 from_angles(float azimuth_deg, float elevation_deg) {
+    const float az = glm::radians(azimuth_deg), el = glm::radians(elevation_deg);
+    // Azimuth 0 looks from +z (where OBJ models usually face), 90 from +x.
+    return {std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)};
+}
+
+// The eye distance at which every corner of the box lies inside the frame,
+// with a margin, for a camera looking along -d at the box's centre.
+float framing_distance(const Bounds& b, glm::vec3 d, float vfov_deg, float aspect) {
+    const glm::vec3 f = -d;
+    const glm::vec3 r = glm::normalize(glm::cross(f, glm::vec3(0, 1, 0)));
+    const glm::vec3 u = glm::cross(r, f);
+    const float margin = 0.8f;  // the box fills at most 80 % of the frame: room for ground and shadow
+    const float tan_v = std::tan(glm::radians(vfov_deg) * 0.5f) * margin, tan_h = tan_v * aspect;
+    const glm::vec3 c0 = b.centre();
+    float dist = 0;
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 corner((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z);
+        const glm::vec3 c = corner - c0;
+        // The corner's depth in front of the eye is dist - dot(c, d).
+        dist = std::max(dist, std::abs(glm::dot(c, r)) / tan_h + glm::dot(c, d));
+        dist = std::max(dist, std::abs(glm::dot(c, u)) / tan_v + glm::dot(c, d));
+    }
+    return std::max(dist, 1.05f * b.radius());
+}
+
+}  // namespace
+
+glm::vec3 presentation_view_direction(const Scene& s) {
+    // The triangles' area-weighted normals, at most ~200k of them: the score
+    // is a sum, and a regular subsample of a big mesh estimates it well.
+    std::vector<glm::vec3> an;  // normal * area
+    const std::size_t n = s.triangle_count();
+    const std::size_t stride = std::max<std::size_t>(1, n / 200000);
+    for (std::size_t t = 0; t < n; t += stride) {
+        const glm::vec3 a = s.vertices[3 * t], b = s.vertices[3 * t + 1], c = s.vertices[3 * t + 2];
+        const glm::vec3 cr = 0.5f * glm::cross(b - a, c - a);
+        if (std::isfinite(cr.x + cr.y + cr.z)) an.push_back(cr);
+    }
+    glm::vec3 best(0, 0, 1);
+    double best_score = -1;
+    std::vector<std::pair<glm::vec3, double>> scored;
+    for (float el : {15.0f, 25.0f, 35.0f, 45.0f})
+        for (float az = 0; az < 360; az += 15) {
+            const glm::vec3 d = from_angles(az, el);
+            double visible = 0;
+            for (const auto& v : an) visible += std::max(0.0f, glm::dot(v, d));
+            scored.push_back({d, visible});
+            best_score = std::max(best_score, visible);
+        }
+    // Near-ties (within 3 %) go to the view closest to the front-right
+    // three-quarter view a photographer would start from.
+    const glm::vec3 preferred = from_angles(35, 25);
+    double best_pref = -2;
+    for (const auto& [d, visible] : scored)
+        if (visible >= 0.97 * best_score && glm::dot(d, preferred) > best_pref) {
+            best_pref = glm::dot(d, preferred);
+            best = d;
+        }
+    return best;
+}
+
+void present_bare_mesh(Scene& s, const PresentationOptions& o) {
+    namespace p = presentation;
+    if (s.triangle_count() == 0) throw Error("internal: present_bare_mesh on an empty scene");
+    bool self_lit = false;
+    for (auto m : s.triangle_material) self_lit = self_lit || emits(s.materials[m]);
+
+    const Bounds b = bounds_of(s);
+    const glm::vec3 d = presentation_view_direction(s);
+    Camera& cam = s.camera;
+    cam.width = 640;
+    cam.height = 480;
+    cam.vfov_degrees = p::kVerticalFov;
+    cam.up = glm::vec3(0, 1, 0);
+    cam.target = b.centre();
+    cam.eye = b.centre() + d * framing_distance(b, d, cam.vfov_degrees, float(cam.width) / float(cam.height));
+
+    if (o.ground && (!self_lit || o.environment)) {
+        // A square under the model, a hair below its lowest point so that a
+        // flat base does not fight with it for the same depth.
+        const float r = b.radius();
+        const float y = b.lo.y - 1e-3f * r, h = p::kGroundHalfSize * r;
+        const glm::vec3 c = b.centre();
+        const glm::vec3 v00(c.x - h, y, c.z - h), v01(c.x - h, y, c.z + h), v11(c.x + h, y, c.z + h),
+            v10(c.x + h, y, c.z - h);
+        const std::uint32_t ground = s.add_material("(ground)", diffuse(glm::vec3(p::kGroundAlbedo)));
+        s.add_triangles({v00, v01, v11, v00, v11, v10}, ground);  // counter-clockwise from above: facing up
+        if (!s.normals.empty()) s.normals.insert(s.normals.end(), 6, glm::vec3(0, 1, 0));
+    }
+
+    if (o.environment) {
+        s.environment = *o.environment;
+    } else if (!self_lit) {
+        s.environment.color = p::kSkyRadiance;
+        PunctualLight sun;
+        sun.type = PunctualLight::Type::Directional;
+        // The sun stands behind the camera's shoulder, turned aside, so the
+        // lit faces show shape and the shadow falls beside the model.
+        const float cam_azimuth = glm::degrees(std::atan2(d.x, d.z));
+        const glm::vec3 to_sun = from_angles(cam_azimuth + p::kSunAzimuthOffset, p::kSunElevation);
+        sun.direction = -to_sun;
+        sun.intensity = p::kSunIrradiance;
+        s.lights.push_back(sun);
+    }
+}
+
+}  // namespace clpath

@@ -1,0 +1,190 @@
+// The default presentation of a bare mesh: the view shows the mesh's largest
+// faces, and a rendered bare mesh shows the model, the ground and the model's
+// shadow on it.
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "render/settings.hpp"
+#include "scene/memory_files.hpp"
+#include "scene/presentation.hpp"
+#include "scene/scene_file.hpp"
+#include "support/render_helpers.hpp"
+
+namespace clpath {
+namespace {
+
+Scene bare(const std::string& obj, const PresentationOptions& p = {}) {
+    test::MemoryFiles files;
+    files.files["m/model.obj"] = obj;
+    LoadOptions o = files.options();
+    o.presentation = p;
+    return obj_scene("m/model.obj", o);
+}
+
+// A plate in the YZ plane facing +x, and one in the XY plane facing +z.
+const char* kYzPlate = "v 0 0 -1\nv 0 0 1\nv 0 1.2 1\nv 0 1.2 -1\nf 1 4 3 2\n";
+const char* kXyPlate = "v -1 0 0\nv 1 0 0\nv 1 1.2 0\nv -1 1.2 0\nf 1 2 3 4\n";
+// A unit cube standing on y = 0, faces outward.
+const char* kCube =
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+    "f 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\nf 4 8 7 3\nf 1 2 6 5\n";
+
+TEST(Presentation, FlatModelsAreSeenFaceOn) {
+    // The direction is chosen from the mesh alone (before the ground is added).
+    PresentationOptions mesh_only;
+    mesh_only.ground = false;
+    const glm::vec3 yz = presentation_view_direction(bare(kYzPlate, mesh_only));
+    EXPECT_GT(yz.x, 0.9f) << "the YZ plate faces +x and must be seen from +x";
+    const glm::vec3 xy = presentation_view_direction(bare(kXyPlate, mesh_only));
+    EXPECT_GT(xy.z, 0.9f);
+    // The camera placed by the presentation looks along the same direction.
+    const Scene placed = bare(kYzPlate);
+    EXPECT_GT(glm::normalize(placed.camera.eye - placed.camera.target).x, 0.9f);
+    // A cube shows three faces: a three-quarter view, from above.
+    const glm::vec3 cube = presentation_view_direction(bare(kCube, mesh_only));
+    EXPECT_GT(std::abs(cube.x), 0.3f);
+    EXPECT_GT(cube.y, 0.3f);
+    EXPECT_GT(std::abs(cube.z), 0.3f);
+}
+
+TEST(Presentation, AddsCameraGroundSkyAndSun) {
+    const Scene s = bare(kCube);
+    ASSERT_EQ(s.lights.size(), 1u);
+    EXPECT_EQ(s.lights[0].type, PunctualLight::Type::Directional);
+    EXPECT_LT(s.lights[0].direction.y, 0.0f);  // the sun shines down
+    EXPECT_GT(s.environment.color.x, 0.0f);
+    EXPECT_EQ(s.triangle_count(), 12u + 2u);  // the cube and the ground's two triangles
+    EXPECT_EQ(s.material_names.back(), "(ground)");
+    // Overrides: no ground; an environment that replaces sky and sun.
+    PresentationOptions p;
+    p.ground = false;
+    p.environment = Environment{};
+    p.environment->color = glm::vec3(0.5f);
+    const Scene o = bare(kCube, p);
+    EXPECT_EQ(o.triangle_count(), 12u);
+    EXPECT_TRUE(o.lights.empty());
+    EXPECT_EQ(o.environment.color, glm::vec3(0.5f));
+}
+
+// Möller and Trumbore (1997) on the CPU: does the segment from o along d
+// (unit) hit any triangle of the model (the first `model` triangles)?
+bool blocked(const Scene& s, std::size_t model, glm::vec3 o, glm::vec3 d) {
+    for (std::size_t t = 0; t < model; ++t) {
+        const glm::vec3 a = s.vertices[3 * t], e1 = s.vertices[3 * t + 1] - a, e2 = s.vertices[3 * t + 2] - a;
+        const glm::vec3 p = glm::cross(d, e2);
+        const float det = glm::dot(e1, p);
+        if (std::abs(det) < 1e-12f) continue;
+        const glm::vec3 q = o - a;
+        const float u = glm::dot(q, p) / det;
+        const glm::vec3 r = glm::cross(q, e1);
+        const float v = glm::dot(d, r) / det, dist = glm::dot(e2, r) / det;
+        if (u >= 0 && v >= 0 && u + v <= 1 && dist > 1e-4f) return true;
+    }
+    return false;
+}
+
+struct Regions {
+    std::size_t model = 0, lit = 0, shadow = 0, pixels = 0;
+    double model_mean = 0, lit_mean = 0, shadow_mean = 0;  // luminance of the path-traced image
+};
+
+// Classifies each pixel by its albedo (model 0.8, ground 0.5, sky 0); ground
+// pixels are lit or in the model's shadow by a CPU shadow ray from the ground
+// point under every corner and the centre of the pixel (all five must agree).
+Regions regions(const Scene& s, std::size_t model_triangles, bool with_sun_for_shadow_ray, glm::vec3 sun_dir) {
+    RenderSettings albedo = settings_from_scene(s.render);
+    albedo.integrator = parse_integrator("albedo");
+    const Image a = test::render(s, albedo, 4).linear;
+    const Image img = test::render(s, settings_from_scene(s.render), 16).linear;
+    const CameraData cam = camera_data(s.camera);
+    const float ground_y = s.vertices[3 * model_triangles].y;
+    Regions r;
+    r.pixels = std::size_t(a.width) * a.height;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const float alb = a.at(x, y, 0);
+            const double lum = 0.2126 * img.at(x, y, 0) + 0.7152 * img.at(x, y, 1) + 0.0722 * img.at(x, y, 2);
+            if (std::abs(alb - 0.8f) < 1e-3f) {
+                ++r.model;
+                r.model_mean += lum;
+                continue;
+            }
+            if (std::abs(alb - presentation::kGroundAlbedo) > 1e-3f) continue;
+            int in_shadow = 0;
+            const float jx[5] = {0, 1, 0, 1, 0.5f}, jy[5] = {0, 0, 1, 1, 0.5f};
+            for (int k = 0; k < 5; ++k) {
+                // The kernel's camera ray (kernels/camera.cl).
+                const float u = 2.0f * (float(x) + jx[k]) / float(cam.width) - 1.0f;
+                const float v = 1.0f - 2.0f * (float(y) + jy[k]) / float(cam.height);
+                const glm::vec3 eye = load3(cam.eye);
+                const glm::vec3 d = glm::normalize(load3(cam.forward) + u * load3(cam.right) + v * load3(cam.up));
+                const glm::vec3 p = eye + d * ((ground_y - eye.y) / d.y);
+                in_shadow += with_sun_for_shadow_ray && blocked(s, model_triangles, p, -sun_dir);
+            }
+            if (in_shadow == 5) {
+                ++r.shadow;
+                r.shadow_mean += lum;
+            } else if (in_shadow == 0) {
+                ++r.lit;
+                r.lit_mean += lum;
+            }
+        }
+    if (r.model) r.model_mean /= double(r.model);
+    if (r.lit) r.lit_mean /= double(r.lit);
+    if (r.shadow) r.shadow_mean /= double(r.shadow);
+    std::printf("pixels %zu: model %zu (mean %.3f), lit ground %zu (mean %.3f), shadow %zu (mean %.3f)\n", r.pixels,
+                r.model, r.model_mean, r.lit, r.lit_mean, r.shadow, r.shadow_mean);
+    return r;
+}
+
+Scene small(Scene s) {
+    s.camera.width = 64;
+    s.camera.height = 48;
+    s.render.max_depth = 4;
+    return s;
+}
+
+TEST(PresentationRender, BareMeshShowsModelGroundAndShadow) {
+    const Scene s = small(bare(kCube));
+    const glm::vec3 sun = s.lights.at(0).direction;
+    const Regions r = regions(s, 12, true, sun);
+    // The model and the ground fill a good part of the frame.
+    EXPECT_GT(r.model, r.pixels / 20) << "model pixels";
+    EXPECT_GT(r.lit, r.pixels / 5) << "lit ground pixels";
+    EXPECT_GE(r.shadow, 10u) << "ground pixels in the model's shadow";
+    // In shadow the ground has only the sky: the sun's share (over half of
+    // the lit ground's radiance, presentation.hpp) is gone.
+    EXPECT_LT(r.shadow_mean, 0.6 * r.lit_mean);
+    EXPECT_GT(r.lit_mean, 0.1);
+    // The model stands out from the ground around it.
+    EXPECT_GT(std::abs(r.model_mean - r.lit_mean), 0.1 * r.lit_mean);
+}
+
+TEST(PresentationRender, ControlWithoutTheSunHasNoShadow) {
+    // The same regions with the sun taken out: the shadow check above must
+    // then fail, or it would not be measuring the sun's shadow.
+    Scene s = small(bare(kCube));
+    const glm::vec3 sun = s.lights.at(0).direction;
+    s.lights.clear();
+    const Regions r = regions(s, 12, true, sun);
+    ASSERT_GE(r.shadow, 10u);
+    EXPECT_GE(r.shadow_mean, 0.6 * r.lit_mean);
+}
+
+TEST(PresentationRender, FlatYzModelIsVisible) {
+    // Seen from +z, this plate was edge-on and every ray missed it.
+    const Scene s = small(bare(kYzPlate));
+    RenderSettings albedo = settings_from_scene(s.render);
+    albedo.integrator = parse_integrator("albedo");
+    const Image a = test::render(s, albedo, 4).linear;
+    std::size_t model = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) model += std::abs(a.at(x, y, 0) - 0.8f) < 1e-3f;
+    EXPECT_GT(model, std::size_t(a.width) * a.height / 10);
+}
+
+}  // namespace
+}  // namespace clpath
