@@ -41,8 +41,12 @@ measure() {
 
 one_thread=$(measure "1 device x 1 thread" env POCL_MAX_PTHREAD_COUNT=1 "$clpath" "${args[@]}")
 one_device=$(measure "1 device x $threads threads" env POCL_MAX_PTHREAD_COUNT="$threads" "$clpath" "${args[@]}")
-devices=$(measure "$threads devices x 1 thread" env POCL_DEVICES="$(printf 'pthread %.0s' $(seq "$threads"))" \
-    POCL_MAX_PTHREAD_COUNT=1 "$clpath" "${args[@]}" --device all)
+# PoCL's pthread devices in one process share one pool of worker threads
+# (POCL_MAX_PTHREAD_COUNT is its size, not each device's): N devices of one
+# thread each would share a single thread. Equal total threads is N devices
+# over a pool of N.
+devices=$(measure "$threads devices sharing $threads threads" env POCL_DEVICES="$(printf 'pthread %.0s' $(seq "$threads"))" \
+    POCL_MAX_PTHREAD_COUNT="$threads" "$clpath" "${args[@]}" --device all)
 ranks=$(measure "$threads ranks x 1 device x 1 thread" "${mpirun_cmd[@]}" -n "$threads" \
     -x POCL_MAX_PTHREAD_COUNT=1 -x CLPATH_CACHE_DIR "$clpath" "${args[@]}")
 
@@ -60,7 +64,7 @@ commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo unknown)
     echo "| configuration | threads in all | Msamples/s | speed-up over 1 thread | efficiency |"
     echo "|---|--:|--:|--:|--:|"
     for row in "1 device x 1 thread|1|$one_thread" "1 device x $threads threads|$threads|$one_device" \
-               "$threads devices x 1 thread|$threads|$devices" "$threads MPI ranks x 1 device x 1 thread|$threads|$ranks"; do
+               "$threads devices sharing PoCL's $threads threads|$threads|$devices" "$threads MPI ranks x 1 device x 1 thread|$threads|$ranks"; do
         IFS='|' read -r name n rate <<<"$row"
         awk -v name="$name" -v n="$n" -v r="$rate" -v base="$one_thread" \
             'BEGIN { printf "| %s | %d | %.3f | %.2f | %.0f %% |\n", name, n, r, r / base, 100 * r / base / n }'
