@@ -13,12 +13,6 @@ inline void kahan_add(float3* sum, float3* comp, float3 x) {
     *sum = t;
 }
 
-kernel void film_clear(global AccumPixel* accum, uint count) {
-    uint i = get_global_id(0);
-    if (i >= count) return;
-    for (int c = 0; c < 4; ++c) accum[i].sum[c] = accum[i].comp[c] = 0.0f;
-}
-
 /* sRGB transfer function (IEC 61966-2-1). */
 inline float srgb_encode(float x) {
     x = clamp(x, 0.0f, 1.0f);

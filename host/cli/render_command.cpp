@@ -56,18 +56,6 @@ struct RenderOptions {
     bool no_partial = false;
 };
 
-// The kernel's sRGB encoding (kernels/film.cl), for images resolved on the host.
-std::vector<std::uint8_t> srgb8_from_linear(const Image& img) {
-    auto enc = [](float x) {
-        x = std::clamp(x, 0.0f, 1.0f);
-        return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
-    };
-    std::vector<std::uint8_t> out(img.rgb.size() / 3 * 4, 255);
-    for (std::size_t i = 0; i < img.rgb.size() / 3; ++i)
-        for (int c = 0; c < 3; ++c) out[i * 4 + c] = std::uint8_t(enc(img.rgb[i * 3 + c]) * 255.0f + 0.5f);
-    return out;
-}
-
 bool is_bare_mesh(const std::string& spec) {
     std::string ext = std::filesystem::path(spec).extension().string();
     for (auto& c : ext) c = char(std::tolower((unsigned char)c));
@@ -162,7 +150,7 @@ int run_render(const RenderOptions& o) {
     RenderedImage image;
     image.linear = result.film.mean();
     // PNG gets the display transform (exposure, tone map); EXR and PFM keep the linear radiance.
-    image.srgb8 = display.is_identity() ? srgb8_from_linear(image.linear) : display_srgb8(image.linear, display);
+    image.srgb8 = display_srgb8(image.linear, display);
     for (const auto& out : outputs) {
         write_image(out, image);
         if (!o.quiet) std::fprintf(stderr, "clpath: wrote %s\n", out.c_str());
