@@ -22,6 +22,15 @@
 namespace clpath {
 namespace {
 
+// "normalize": the mesh's bounding box [lo, hi] centred on the origin with
+// its longest side 1; the identity for an empty or non-finite box.
+glm::mat4 fit_to_unit_box(glm::vec3 lo, glm::vec3 hi) {
+    const glm::vec3 ext = hi - lo;
+    const float longest = std::max({ext.x, ext.y, ext.z});
+    if (!(longest > 0) || !std::isfinite(longest)) return glm::mat4(1);
+    return glm::scale(glm::mat4(1), glm::vec3(1 / longest)) * glm::translate(glm::mat4(1), -(lo + hi) * 0.5f);
+}
+
 namespace fs = std::filesystem;
 using jsonf::Object;
 using jsonf::Range;
@@ -386,11 +395,7 @@ private:
                 lo = glm::min(lo, v);
                 hi = glm::max(hi, v);
             }
-            const glm::vec3 ext = hi - lo;
-            const float longest = std::max({ext.x, ext.y, ext.z});
-            if (longest > 0 && std::isfinite(longest))
-                place = m * glm::scale(glm::mat4(1), glm::vec3(1 / longest)) *
-                        glm::translate(glm::mat4(1), -(lo + hi) * 0.5f);
+            place = m * fit_to_unit_box(lo, hi);
         }
         if (mesh.triangle_count() == 0) {
             scene_.warnings.push_back(label + ": the mesh " + path + " has no faces");
@@ -439,11 +444,7 @@ private:
                         lo = glm::min(lo, w);
                         hi = glm::max(hi, w);
                     }
-            const glm::vec3 ext = hi - lo;
-            const float longest = std::max({ext.x, ext.y, ext.z});
-            if (longest > 0 && std::isfinite(longest))
-                place = place * glm::scale(glm::mat4(1), glm::vec3(1 / longest)) *
-                        glm::translate(glm::mat4(1), -(lo + hi) * 0.5f);
+            place = place * fit_to_unit_box(lo, hi);
         }
         add_gltf(scene_, builder_, model, place, path, smooth, override_for);
     }
