@@ -40,6 +40,7 @@ struct ScalingRow {
     double bytes_per_triangle = 0;  // device nodes + triangle records
     double primary_mrays = 0, shadow_mrays = 0, diffuse_mrays = 0;
     double msamples_per_s = 0;       // path integrator, default settings
+    double path_mrays_per_s = 0;     // its rays per second, every kind
     std::size_t checked = 0, mismatched = 0;  // CPU check over the three batches
     double seconds = 0;              // wall time this row took
 };
