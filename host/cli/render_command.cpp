@@ -23,10 +23,18 @@
 #include "render/renderer.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/scene_loader.hpp"
+#include "util/env_values.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
 namespace {
+
+// The longest gap between progress lines in a log, in milliseconds. Meant for
+// tests that cannot wait 10 s; documented in README.
+double progress_interval_from_env() {
+    const auto ms = env_whole_number("CLPATH_PROGRESS_INTERVAL_MS", 10, 86400000, "milliseconds");
+    return ms ? double(*ms) / 1000.0 : kDefaultProgressInterval;
+}
 
 // Options left unset (nullopt) take the scene file's value, then the default.
 struct RenderOptions {
@@ -65,6 +73,7 @@ bool is_bare_mesh(const std::string& spec) {
 int run_render(const RenderOptions& o) {
     // Everything that can be checked before rendering is checked first.
     const auto load_start = std::chrono::steady_clock::now();
+    const double progress_interval = progress_interval_from_env();
     LoadOptions load;
     load.gltf_camera = o.gltf_camera;
     load.presentation.ground = !o.no_ground;
@@ -128,6 +137,7 @@ int run_render(const RenderOptions& o) {
     co.checkpoint_path = o.checkpoint_file.empty() ? outputs.front() + ".checkpoint" : o.checkpoint_file;
     co.resume_path = o.resume;
     co.progress = !o.quiet;
+    co.progress_interval = progress_interval;
     ChunkedRenderResult result;
     try {
         result = render_in_chunks(scene, settings, devices, co, mpi);

@@ -76,6 +76,11 @@ clpath_usage_test(memory_limit_negative RC 2 ENV CLPATH_DEVICE_MEMORY_LIMIT=-5 A
                   OUTPUT "clpath: error: CLPATH_DEVICE_MEMORY_LIMIT='-5': expected a whole number")
 clpath_usage_test(memory_limit_zero RC 2 ENV CLPATH_DEVICE_MEMORY_LIMIT=0 ARGS render ${SMALL} -o ${USAGE_OUT}/mem3.pfm
                   OUTPUT "clpath: error: CLPATH_DEVICE_MEMORY_LIMIT='0': expected a whole number of bytes from 1")
+clpath_usage_test(progress_interval_not_a_number RC 2 ENV CLPATH_PROGRESS_INTERVAL_MS=1.5 ARGS render ${SMALL} -o ${USAGE_OUT}/pi.pfm
+                  OUTPUT "clpath: error: CLPATH_PROGRESS_INTERVAL_MS='1\\.5': expected a whole number of milliseconds from 10 to 86400000"
+                  FORBID ${USAGE_OUT}/pi.pfm)
+clpath_usage_test(progress_interval_too_short RC 2 ENV CLPATH_PROGRESS_INTERVAL_MS=0 ARGS render ${SMALL} -o ${USAGE_OUT}/pi.pfm
+                  OUTPUT "clpath: error: CLPATH_PROGRESS_INTERVAL_MS='0': expected a whole number of milliseconds from 10")
 
 # --- outputs --------------------------------------------------------------------------------
 clpath_usage_test(out_is_folder_with_slash RC 2 ARGS render ${SMALL} -o ${USAGE_OUT}/a-folder/
