@@ -12,6 +12,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include "scene/obj_text_encoding.hpp"
 #include "scene/polygon_triangulation.hpp"
 #include "util/error.hpp"
 
@@ -30,6 +31,25 @@ std::string_view next_token(std::string_view& s) {
     std::string_view tok = s.substr(i, j - i);
     s.remove_prefix(j);
     return tok;
+}
+
+// A material's name: the rest of its usemtl or newmtl line, less the
+// whitespace around it, as assimp and Blender read it ("usemtl Hard Shiny
+// Plastic" names one material).
+std::string name_of(std::string_view rest) {
+    std::size_t i = 0, j = rest.size();
+    while (i < j && is_space(rest[i])) ++i;
+    while (j > i && is_space(rest[j - 1])) --j;
+    return std::string(rest.substr(i, j - i));
+}
+
+// Files written on Windows name their libraries and images with backslashes
+// (".\\wood.jpg"); read as the folder separators they are, as Blender and
+// assimp do.
+std::string with_slashes(std::string path) {
+    for (auto& c : path)
+        if (c == '\\') c = '/';
+    return path;
 }
 
 // The line starting at pos, without its end; pos moves past the end. Lines
@@ -72,6 +92,7 @@ struct Scan {
     };
     std::vector<Named> mtllibs;
     std::vector<Named> usemtl;  // first use of each name
+    std::vector<int> empty_usemtl;  // lines of usemtl statements that name nothing
     int first_mtllib_line = 0, first_usemtl_line = 0;
 };
 
@@ -146,14 +167,17 @@ Scan scan_obj(const std::string& text, const std::string& file) {
         } else if (key == "mtllib") {
             bool any = false;
             for (std::string_view tok = next_token(rest); !tok.empty(); tok = next_token(rest)) {
-                s.mtllibs.push_back({std::string(tok), line_no});
+                s.mtllibs.push_back({with_slashes(std::string(tok)), line_no});
                 any = true;
             }
             if (!any) fail("mtllib names no file");
             if (!s.first_mtllib_line) s.first_mtllib_line = line_no;
         } else if (key == "usemtl") {
-            const std::string name(next_token(rest));
-            if (name.empty()) fail("usemtl names no material");
+            const std::string name = name_of(rest);
+            if (name.empty()) {
+                s.empty_usemtl.push_back(line_no);
+                continue;
+            }
             bool seen = false;
             for (const auto& u : s.usemtl) seen = seen || u.name == name;
             if (!seen) s.usemtl.push_back({name, line_no});
@@ -203,7 +227,11 @@ void scan_mtl(const std::string& text, const std::string& file) {
 // some unchecked: a vw joint id of 1e38 is converted to int out of range,
 // which is undefined behaviour. It is handed only the statements clpath
 // reads; every other line is emptied, so line numbers stay the same.
-std::string statements_clpath_reads(const std::string& text) {
+// tinyobjloader reads a usemtl name up to the first space, so each usemtl
+// line is handed over naming its material by a key without spaces
+// (key_of_name); one that names nothing is emptied (the faces after it keep
+// the material before it, as in assimp).
+std::string statements_clpath_reads(const std::string& text, const std::map<std::string, std::string>& key_of_name) {
     std::string out;
     out.reserve(text.size());
     for (std::size_t pos = 0; pos < text.size();) {
@@ -211,7 +239,13 @@ std::string statements_clpath_reads(const std::string& text) {
         const std::string_view line = next_line(text, pos);
         std::string_view rest = line;
         const std::string_view key = next_token(rest);
-        const bool used = key == "v" || key == "vn" || key == "vt" || key == "f" || key == "mtllib" || key == "usemtl";
+        if (key == "usemtl") {
+            const std::string name = name_of(rest);
+            if (!name.empty()) out += "usemtl " + key_of_name.at(name);
+            out.append(text, start + line.size(), pos - start - line.size());
+            continue;
+        }
+        const bool used = key == "v" || key == "vn" || key == "vt" || key == "f" || key == "mtllib";
         const std::size_t from = used ? start : start + line.size();
         out.append(text, from, pos - from);
     }
@@ -350,7 +384,8 @@ constexpr const char* kMaterialsTag = "__clpath_materials__";
 
 }  // namespace
 
-ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFile& read_file) {
+ObjMesh parse_obj(const std::string& raw_text, const std::string& file, const ReadFile& read_file) {
+    const std::string text = obj_text_as_utf8(raw_text, file);
     const Scan scan = scan_obj(text, file);
     ObjMesh mesh;
 
@@ -371,6 +406,7 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
                                     e.what() + "; the materials it would define are the default grey");
             continue;
         }
+        mtl_text = obj_text_as_utf8(std::move(mtl_text), path);
         if (mtl_text.find('\0') != std::string::npos) throw Error(path + ": contains a NUL byte (is this an MTL file?)");
         scan_mtl(mtl_text, path);
         std::vector<tinyobj::material_t> got;
@@ -379,7 +415,8 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
         std::string warn, err;
         tinyobj::LoadMtl(&got_map, &got, &in, &warn, &err);
         if (!err.empty()) throw Error(path + ": " + err);
-        for (const auto& m : got) {
+        for (auto m : got) {
+            m.name = name_of(m.name);  // tinyobjloader keeps the spaces after it
             if (tmap.count(m.name)) continue;  // the first definition wins, as in tinyobjloader
             ObjMaterial om;
             om.name = m.name;
@@ -390,7 +427,9 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
                 // (Kd is the colour where the map is absent), metallic Pm,
                 // roughness Pr or from Ns, cut out by map_d.
                 const fs::path dir = fs::path(path).parent_path();
-                auto resolve = [&](const std::string& n) { return n.empty() ? n : (dir / n).lexically_normal().string(); };
+                auto resolve = [&](const std::string& n) {
+                    return n.empty() ? n : (dir / with_slashes(n)).lexically_normal().string();
+                };
                 om.diffuse_texture = resolve(m.diffuse_texname);
                 om.alpha_texture = resolve(m.alpha_texname);
                 float rough = float(m.roughness);
@@ -432,12 +471,23 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> unused;
     std::string warn, err;
-    PreparedMaterials reader(tmats, tmap);
+    for (int line : scan.empty_usemtl)
+        mesh.warnings.push_back(file + ":" + std::to_string(line) +
+                                ": usemtl names no material; ignored (the faces after it keep the material before it)");
+    // tinyobjloader knows the materials by keys without spaces.
+    std::map<std::string, int> tiny_map;
+    std::map<std::string, std::string> key_of_name;
+    for (const auto& [name, i] : tmap) {
+        const std::string key = "m" + std::to_string(i);
+        tiny_map[key] = i;
+        key_of_name[name] = key;
+    }
+    PreparedMaterials reader(tmats, tiny_map);
     // tinyobjloader resolves usemtl when it reads it, so the materials must be
     // in before the first usemtl: a leading mtllib line of our own when the
     // file uses a material before naming a library (or names none).
     const bool need_tag = scan.first_usemtl_line && (!scan.first_mtllib_line || scan.first_usemtl_line < scan.first_mtllib_line);
-    const std::string statements = statements_clpath_reads(text);
+    const std::string statements = statements_clpath_reads(text, key_of_name);
     std::istringstream in(need_tag ? std::string("mtllib ") + kMaterialsTag + "\n" + statements : statements);
     // Faces come whole (triangulate = false): tinyobjloader cuts a quad along
     // its shorter diagonal, which lies outside a concave one.
