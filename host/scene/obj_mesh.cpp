@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cstdint>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -93,6 +94,10 @@ struct Scan {
     std::vector<Named> mtllibs;
     std::vector<Named> usemtl;  // first use of each name
     std::vector<int> empty_usemtl;  // lines of usemtl statements that name nothing
+    // Every face's corner count, in file order: tinyobjloader keeps only the
+    // count modulo 256 (an unsigned char), so a face of 300 corners would
+    // take its neighbours' corners.
+    std::vector<std::uint32_t> face_corners;
     int first_mtllib_line = 0, first_usemtl_line = 0;
 };
 
@@ -164,6 +169,7 @@ Scan scan_obj(const std::string& text, const std::string& file) {
             if (corners < 3)
                 fail("face has " + std::to_string(corners) + " corner" + (corners == 1 ? "" : "s") +
                      ", at least 3 are needed");
+            s.face_corners.push_back(std::uint32_t(corners));
         } else if (key == "mtllib") {
             bool any = false;
             for (std::string_view tok = next_token(rest); !tok.empty(); tok = next_token(rest)) {
@@ -503,11 +509,14 @@ ObjMesh parse_obj(const std::string& raw_text, const std::string& file, const Re
                              std::any_of(attrib.colors.begin(), attrib.colors.end(), [](tinyobj::real_t c) { return c != 1; });
     std::vector<glm::vec3> polygon;
     std::vector<std::array<std::size_t, 3>> cut;
+    std::size_t face_no = 0;  // in file order, across shapes
     for (const auto& shape : shapes) {
         const auto& m = shape.mesh;
         std::size_t first = 0;
         for (std::size_t f = 0; f < m.num_face_vertices.size(); ++f) {
-            const std::size_t corners = m.num_face_vertices[f];
+            if (face_no >= scan.face_corners.size() || (scan.face_corners[face_no] & 0xFFu) != m.num_face_vertices[f])
+                throw Error(file + ": internal: tinyobjloader read other faces than the line check");
+            const std::size_t corners = scan.face_corners[face_no++];
             if (first + corners > m.indices.size()) throw Error(file + ": internal: tinyobjloader face list is short");
             const int mat = f < m.material_ids.size() ? m.material_ids[f] : -1;
             if (mat >= int(mesh.materials.size())) throw Error(file + ": internal: material id out of range");
@@ -551,7 +560,9 @@ ObjMesh parse_obj(const std::string& raw_text, const std::string& file, const Re
             }
             first += corners;
         }
+        if (first != m.indices.size()) throw Error(file + ": internal: tinyobjloader face list is long");
     }
+    if (face_no != scan.face_corners.size()) throw Error(file + ": internal: tinyobjloader read fewer faces than the line check");
     return mesh;
 }
 
