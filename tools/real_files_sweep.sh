@@ -58,3 +58,6 @@ EOF
     printf '%s\t%s\t%.1f\t%s\t%s\n' "$f" "$rc" "$secs" "$cov" "$msg" | tee -a "$table"
 done
 echo "wrote $table"
+
+"$python" "$here/tools/real_files_summary.py" "$table" >"$out/summary.md"
+echo "wrote $out/summary.md"
