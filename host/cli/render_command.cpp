@@ -199,9 +199,7 @@ int run_render(const RenderOptions& o) {
 Command add_render_command(CLI::App& app) {
     auto o = std::make_shared<RenderOptions>();
     CLI::App* cmd = app.add_subcommand("render", "Render a scene progressively and write the image");
-    std::string names;
-    for (const auto& n : builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
-    cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj), glTF model (.gltf, .glb) or built-in scene (" + names + ")")
+    cmd->add_option("scene", o->scene, scene_argument_help())
         ->capture_default_str();
     cmd->add_option("--gltf-camera", o->gltf_camera, "A glTF model's camera, by name or index (default: the first)");
     cmd->add_option("--spp", o->spp, "Samples per pixel (default: the scene's, else 64; unlimited with --time)")

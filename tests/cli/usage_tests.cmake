@@ -29,6 +29,12 @@ clpath_usage_test(missing_value RC 2 ARGS render --spp OUTPUT "^clpath: error: -
 clpath_usage_test(no_subcommand RC 2 ARGS "" OUTPUT "^clpath: error: .*subcommand")
 clpath_usage_test(missing_positional RC 2 ARGS compare OUTPUT "^clpath: error: image is required")
 clpath_usage_test(help_is_not_an_error RC 0 ARGS render --help OUTPUT "--tonemap")
+# Every command that takes a scene loads what render loads, and says so.
+foreach(cmd view export bench_rays bench_build bench_convergence)
+    string(REPLACE "_" ";" words ${cmd})
+    clpath_usage_test(${cmd}_help_names_scene_kinds RC 0 ARGS ${words} --help
+                      OUTPUT "glTF model \\(\\.gltf, \\.glb\\) or built-in scene \\(cornell, scaling:N, room:N\\)")
+endforeach()
 
 # --- numbers: non-finite, negative, out of range ---------------------------------------------
 clpath_usage_test(time_nan RC 2 ARGS render --time nan
