@@ -3,7 +3,9 @@
 # would (clpath render FILE) and records, per file: exit status, the first
 # error or warning, wall time, and how much of the image the model covers.
 #
-#   tools/real_files_sweep.sh [CLPATH] [OUT_DIR]
+#   tools/real_files_sweep.sh [CLPATH] [OUT_DIR] [FILE...]
+#
+# Without FILEs: every model file of the two packages below.
 #
 # Needs glmark2-data and assimp-testmodels (apt-get install assimp-testmodels)
 # and python3-numpy. Light on purpose (160x120, 4 spp): the machine is shared.
@@ -19,8 +21,13 @@ limit=${SWEEP_TIMEOUT:-120}  # seconds; past it a render counts as a hang
 mkdir -p "$out"
 python=/usr/bin/python3  # Debian's, with python3-numpy
 
-mapfile -t files < <( { find /usr/share/glmark2/models /usr/share/assimp/models -type f \
-    \( -iname '*.obj' -o -iname '*.gltf' -o -iname '*.glb' \) 2>/dev/null; } | sort)
+shift $(( $# < 2 ? $# : 2 ))
+if [ $# -gt 0 ]; then
+    files=("$@")
+else
+    mapfile -t files < <( { find /usr/share/glmark2/models /usr/share/assimp/models -type f \
+        \( -iname '*.obj' -o -iname '*.gltf' -o -iname '*.glb' \) 2>/dev/null; } | sort)
+fi
 [ ${#files[@]} -gt 0 ] || { echo "no model files: apt-get install glmark2-data assimp-testmodels" >&2; exit 1; }
 
 table=$out/results.tsv
@@ -28,11 +35,11 @@ printf 'file\trc\tseconds\tcoverage\tmessage\n' >"$table"
 for f in "${files[@]}"; do
     name=$(echo "${f#/usr/share/}" | tr '/ ' '__')
     log=$out/$name.log
-    t0=$(date +%s.%N)
+    t0=$(date +%s%N)
     timeout -s INT "$limit" "$clpath" render "$f" --spp 4 --width 160 --height 120 -o "$out/$name.png" >"$log" 2>&1
     rc=$?
-    t1=$(date +%s.%N)
-    secs=$(echo "$t1 - $t0" | bc)
+    t1=$(date +%s%N)
+    ms=$(( (t1 - t0) / 1000000 ))
     # The first error, else the first warning, else nothing: what a user reads first.
     msg=$(grep -m1 'clpath: error:' "$log" || grep -m1 -i 'warning' "$log" || true)
     msg=${msg//$'\t'/ }
@@ -55,7 +62,7 @@ EOF
             cov=failed
         fi
     fi
-    printf '%s\t%s\t%.1f\t%s\t%s\n' "$f" "$rc" "$secs" "$cov" "$msg" | tee -a "$table"
+    printf '%s\t%s\t%d.%d\t%s\t%s\n' "$f" "$rc" $((ms / 1000)) $((ms % 1000 / 100)) "$cov" "$msg" | tee -a "$table"
 done
 echo "wrote $table"
 
