@@ -14,6 +14,7 @@
 #include <tiny_obj_loader.h>
 
 #include "scene/obj_text_encoding.hpp"
+#include "scene/obj_tokens.hpp"
 #include "scene/polygon_triangulation.hpp"
 #include "util/error.hpp"
 
@@ -21,67 +22,7 @@ namespace clpath {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-
-std::string_view next_token(std::string_view& s) {
-    std::size_t i = 0;
-    while (i < s.size() && is_space(s[i])) ++i;
-    std::size_t j = i;
-    while (j < s.size() && !is_space(s[j])) ++j;
-    std::string_view tok = s.substr(i, j - i);
-    s.remove_prefix(j);
-    return tok;
-}
-
-// A material's name: the rest of its usemtl or newmtl line, less the
-// whitespace around it, as assimp and Blender read it ("usemtl Hard Shiny
-// Plastic" names one material).
-std::string name_of(std::string_view rest) {
-    std::size_t i = 0, j = rest.size();
-    while (i < j && is_space(rest[i])) ++i;
-    while (j > i && is_space(rest[j - 1])) --j;
-    return std::string(rest.substr(i, j - i));
-}
-
-// Files written on Windows name their libraries and images with backslashes
-// (".\\wood.jpg"); read as the folder separators they are, as Blender and
-// assimp do.
-std::string with_slashes(std::string path) {
-    for (auto& c : path)
-        if (c == '\\') c = '/';
-    return path;
-}
-
-// The line starting at pos, without its end; pos moves past the end. Lines
-// end where tinyobjloader ends them: at \n, \r or \r\n.
-std::string_view next_line(const std::string& text, std::size_t& pos) {
-    std::size_t end = text.find('\n', pos);  // memchr-fast, then \r within the line only
-    if (end == std::string::npos) end = text.size();
-    const void* cr = std::memchr(text.data() + pos, '\r', end - pos);
-    if (cr) end = std::size_t(static_cast<const char*>(cr) - text.data());
-    const std::string_view line(text.data() + pos, end - pos);
-    pos = end;
-    if (pos < text.size() && text[pos++] == '\r' && pos < text.size() && text[pos] == '\n') ++pos;
-    return line;
-}
-
-bool parse_double(std::string_view t, double& out) {
-    if (!t.empty() && t[0] == '+') t.remove_prefix(1);
-    if (t.empty()) return false;
-    const auto r = std::from_chars(t.data(), t.data() + t.size(), out);
-    if (r.ptr != t.data() + t.size()) return false;
-    // 1e999 is a number, just not a finite one: said so by the caller.
-    if (r.ec == std::errc::result_out_of_range) out = HUGE_VAL;
-    return r.ec == std::errc() || r.ec == std::errc::result_out_of_range;
-}
-
-bool parse_int(std::string_view t, long long& out) {
-    if (!t.empty() && t[0] == '+') t.remove_prefix(1);
-    if (t.empty()) return false;
-    const auto r = std::from_chars(t.data(), t.data() + t.size(), out);
-    return r.ec == std::errc() && r.ptr == t.data() + t.size();
-}
+using namespace obj_text;
 
 // What the line-by-line check learns on the way.
 struct Scan {
@@ -98,6 +39,12 @@ struct Scan {
     // count modulo 256 (an unsigned char), so a face of 300 corners would
     // take its neighbours' corners.
     std::vector<std::uint32_t> face_corners;
+    // Lines whose numbers had text after them ("3.1+e2"), rewritten with the
+    // numbers alone, which is what tinyobjloader is handed; the first one's
+    // warning, and how many there were.
+    std::map<int, std::string> rewritten;
+    std::string trailing_text_warning;
+    std::size_t trailing_text_count = 0;
     int first_mtllib_line = 0, first_usemtl_line = 0;
 };
 
@@ -109,12 +56,26 @@ Scan scan_obj(const std::string& text, const std::string& file) {
     int line_no = 0;
     std::size_t pos = 0;
     auto fail = [&](const std::string& what) -> void { throw Error(file + ":" + std::to_string(line_no) + ": " + what); };
-    auto check_numbers = [&](std::string_view rest, const char* what, std::size_t min_count) {
+    auto check_numbers = [&](std::string_view key, std::string_view rest, const char* what, std::size_t min_count) {
         std::size_t n = 0;
+        std::string numbers(key);  // the line with each number's text alone
+        bool rewrite = false;
         for (std::string_view tok = next_token(rest); !tok.empty() && tok[0] != '#'; tok = next_token(rest)) {
             double d;
-            if (!parse_double(tok, d))
-                fail(std::string(what) + ": '" + std::string(tok) + "' is not a number");
+            std::string_view number = tok;
+            if (!parse_double(tok, d)) {
+                // As assimp and Blender read it: the number it starts with, and a warning.
+                const std::size_t len = parse_leading_double(tok, d);
+                if (len == 0) fail(std::string(what) + ": '" + std::string(tok) + "' is not a number");
+                number = tok.substr(0, len);
+                rewrite = true;
+                if (s.trailing_text_count++ == 0)
+                    s.trailing_text_warning = file + ":" + std::to_string(line_no) + ": " + what + ": '" +
+                                              std::string(tok) + "' is not a number; read as " + std::string(number) +
+                                              ", the number it starts with, as assimp and Blender read it";
+            }
+            numbers += " ";
+            numbers += number;
             if (!std::isfinite(d)) fail(std::string(what) + ": '" + std::string(tok) + "' is not a finite number");
             if (std::fabs(d) > 3.0e38) fail(std::string(what) + ": '" + std::string(tok) + "' is too large for a float");
             ++n;
@@ -122,6 +83,7 @@ Scan scan_obj(const std::string& text, const std::string& file) {
         if (n < min_count)
             fail(std::string(what) + " needs at least " + std::to_string(min_count) + " numbers, got " +
                  std::to_string(n));
+        if (rewrite) s.rewritten[line_no] = std::move(numbers);
     };
     auto check_index = [&](std::string_view tok, std::string_view part, std::size_t defined, const char* kind,
                            const char* kinds) {
@@ -140,13 +102,13 @@ Scan scan_obj(const std::string& text, const std::string& file) {
         const std::string_view key = next_token(rest);
         if (key.empty() || key[0] == '#') continue;
         if (key == "v") {
-            check_numbers(rest, "vertex", 3);
+            check_numbers(key, rest, "vertex", 3);
             ++s.v;
         } else if (key == "vn") {
-            check_numbers(rest, "normal", 3);
+            check_numbers(key, rest, "normal", 3);
             ++s.vn;
         } else if (key == "vt") {
-            check_numbers(rest, "texture coordinate", 1);
+            check_numbers(key, rest, "texture coordinate", 1);
             ++s.vt;
         } else if (key == "f") {
             std::size_t corners = 0;
@@ -237,12 +199,21 @@ void scan_mtl(const std::string& text, const std::string& file) {
 // line is handed over naming its material by a key without spaces
 // (key_of_name); one that names nothing is emptied (the faces after it keep
 // the material before it, as in assimp).
-std::string statements_clpath_reads(const std::string& text, const std::map<std::string, std::string>& key_of_name) {
+// Lines in `rewritten` (by number) are handed over as given there.
+std::string statements_clpath_reads(const std::string& text, const std::map<std::string, std::string>& key_of_name,
+                                    const std::map<int, std::string>& rewritten) {
     std::string out;
     out.reserve(text.size());
+    int line_no = 0;
     for (std::size_t pos = 0; pos < text.size();) {
         const std::size_t start = pos;
         const std::string_view line = next_line(text, pos);
+        ++line_no;
+        if (auto it = rewritten.find(line_no); it != rewritten.end()) {
+            out += it->second;
+            out.append(text, start + line.size(), pos - start - line.size());
+            continue;
+        }
         std::string_view rest = line;
         const std::string_view key = next_token(rest);
         if (key == "usemtl") {
@@ -470,6 +441,11 @@ ObjMesh parse_obj(const std::string& raw_text, const std::string& file, const Re
         mesh.materials.push_back(om);
     }
     if (textures) mesh.warnings.push_back(file + ": texture maps other than map_Kd and map_d in its materials are ignored");
+    if (scan.trailing_text_count)
+        mesh.warnings.push_back(scan.trailing_text_warning +
+                                (scan.trailing_text_count > 1
+                                     ? " (and " + std::to_string(scan.trailing_text_count - 1) + " more such numbers)"
+                                     : std::string()));
     if (scan.lines_points)
         mesh.warnings.push_back(file + ": " + std::to_string(scan.lines_points) + " line and point elements ignored");
 
@@ -493,7 +469,7 @@ ObjMesh parse_obj(const std::string& raw_text, const std::string& file, const Re
     // in before the first usemtl: a leading mtllib line of our own when the
     // file uses a material before naming a library (or names none).
     const bool need_tag = scan.first_usemtl_line && (!scan.first_mtllib_line || scan.first_usemtl_line < scan.first_mtllib_line);
-    const std::string statements = statements_clpath_reads(text, key_of_name);
+    const std::string statements = statements_clpath_reads(text, key_of_name, scan.rewritten);
     std::istringstream in(need_tag ? std::string("mtllib ") + kMaterialsTag + "\n" + statements : statements);
     // Faces come whole (triangulate = false): tinyobjloader cuts a quad along
     // its shorter diagonal, which lies outside a concave one.

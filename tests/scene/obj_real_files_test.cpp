@@ -146,5 +146,25 @@ TEST(ObjRealFiles, Utf8AndUtf16WithByteOrderMarks) {
               "m/mesh.obj: UTF-16 text with an odd number of bytes (cut short?)");
 }
 
+// A number followed by other text ("3.1+e2" in assimp's number_formats.obj,
+// a mistyped 3.1e+2): read as the number it starts with, as assimp and
+// Blender read it, with a warning naming the first line. Text that starts
+// with no number stays an error.
+TEST(ObjRealFiles, NumbersWithTextAfterThemReadAsTheirLeadingNumber) {
+    const ObjMesh m = parse_obj("v 0 0 0\nv 1e+2 2.e+1 3.1+e2\nv +1e -2.5x 0\nvn 0 0 1z\nf 1//1 2//1 3//1\n", "m/mesh.obj",
+                                MemoryFiles().options().read_file);
+    ASSERT_EQ(m.triangle_count(), 1u);
+    EXPECT_EQ(m.vertices[1], glm::vec3(100, 20, 3.1f));
+    EXPECT_EQ(m.vertices[2], glm::vec3(1, -2.5f, 0));  // "1e": tinyobjloader alone would read 0
+    ASSERT_EQ(m.normals.size(), 3u);
+    EXPECT_EQ(m.normals[0], glm::vec3(0, 0, 1));
+    EXPECT_TRUE(has_warning(m.warnings, "m/mesh.obj:2: vertex: '3.1+e2' is not a number; read as 3.1, the number it "
+                                        "starts with, as assimp and Blender read it (and 3 more such numbers)"));
+    EXPECT_EQ(error_of([] { parse_obj("v 0 0 x1\n", "m/mesh.obj", MemoryFiles().options().read_file); }),
+              "m/mesh.obj:1: vertex: 'x1' is not a number");
+    EXPECT_EQ(error_of([] { parse_obj("v 0 0 1e999x\n", "m/mesh.obj", MemoryFiles().options().read_file); }),
+              "m/mesh.obj:1: vertex: '1e999x' is not a finite number");
+}
+
 }  // namespace
 }  // namespace clpath
