@@ -64,10 +64,12 @@ struct RenderOptions {
     bool no_partial = false;
 };
 
+// Only an OBJ mesh gets the presentation's ground (docs/scene-format.md,
+// "Bare meshes"); a glTF model is not presented that way.
 bool is_bare_mesh(const std::string& spec) {
     std::string ext = std::filesystem::path(spec).extension().string();
     for (auto& c : ext) c = char(std::tolower((unsigned char)c));
-    return ext == ".obj" || ext == ".gltf" || ext == ".glb";
+    return ext == ".obj";
 }
 
 int run_render(const RenderOptions& o) {

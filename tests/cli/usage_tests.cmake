@@ -125,6 +125,8 @@ clpath_usage_test(env_colour RC 0 ARGS render ${CLI_DATA}/yz-plate.obj ${SMALL} 
                   OUTPUT "summary: ")
 clpath_usage_test(no_ground_on_builtin_warns RC 0 ARGS render ${SMALL} --no-ground -o ${USAGE_OUT}/ng.pfm
                   OUTPUT "warning: --no-ground has no effect on cornell: only a bare mesh gets a ground")
+clpath_usage_test(no_ground_on_gltf_warns RC 0 ARGS render ${CMAKE_SOURCE_DIR}/scenes/suzanne/Suzanne.gltf ${SMALL} --no-ground
+                  -o ${USAGE_OUT}/ng-gltf.pfm OUTPUT "warning: --no-ground has no effect on .*Suzanne\\.gltf: only a bare mesh gets a ground")
 
 # --- export ---------------------------------------------------------------------------------
 file(REMOVE_RECURSE ${USAGE_OUT}/export-made)
