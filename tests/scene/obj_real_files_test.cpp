@@ -150,7 +150,7 @@ TEST(ObjRealFiles, Utf8AndUtf16WithByteOrderMarks) {
 // a mistyped 3.1e+2): read as the number it starts with, as assimp and
 // Blender read it, with a warning naming the first line. Text that starts
 // with no number stays an error.
-TEST(ObjRealFiles, NumbersWithTextAfterThemReadAsTheirLeadingNumber) {
+TEST(ObjRealFiles, NumbersWithTextAfterThemReadAsTheNumberTheyStartWith) {
     const ObjMesh m = parse_obj("v 0 0 0\nv 1e+2 2.e+1 3.1+e2\nv +1e -2.5x 0\nvn 0 0 1z\nf 1//1 2//1 3//1\n", "m/mesh.obj",
                                 MemoryFiles().options().read_file);
     ASSERT_EQ(m.triangle_count(), 1u);
