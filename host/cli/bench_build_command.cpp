@@ -12,6 +12,7 @@
 #include "bench/report_files.hpp"
 #include "bvh/bvh.hpp"
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "scene/scene_loader.hpp"
 #include "util/error.hpp"
 
@@ -77,7 +78,7 @@ int run_build(const BuildBenchOptions& o) {
 Command add_bench_build_command(CLI::App& bench) {
     auto o = std::make_shared<BuildBenchOptions>();
     CLI::App* cmd = bench.add_subcommand("build", "BVH build time: median of repeated builds, Mtris/s, SAH cost");
-    cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj) or built-in scene (cornell, scaling:N, room:N)")
+    cmd->add_option("scene", o->scene, scene_argument_help())
         ->required();
     cmd->add_option("--threads", o->threads, "Build threads (0: all hardware threads)")
         ->check(CLI::Range(0, 1024))

@@ -144,7 +144,7 @@ Command add_bench_convergence_command(CLI::App& bench) {
     auto o = std::make_shared<ConvergenceArgs>();
     CLI::App* cmd = bench.add_subcommand(
         "convergence", "Error against a reference image at 1, 2, 4, ... spp for each estimator configuration");
-    cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj) or built-in scene")->required();
+    cmd->add_option("scene", o->scene, scene_argument_help())->required();
     cmd->add_option("--reference,-r", o->reference,
                     "Reference image (.exr or .pfm, linear) of the scene, at the render size or an integer multiple")
         ->required()

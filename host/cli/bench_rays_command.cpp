@@ -134,7 +134,7 @@ Command add_bench_rays_command(CLI::App& bench) {
     auto o = std::make_shared<RaysOptions>();
     CLI::App* cmd = bench.add_subcommand(
         "rays", "Ray-batch traversal benchmark: primary, shadow and diffuse batches, Mrays/s, checked on the CPU");
-    cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj) or built-in scene (cornell, scaling:N, room:N)")
+    cmd->add_option("scene", o->scene, scene_argument_help())
         ->required();
     const std::string tile = std::to_string(CLP_BATCH_TILE);
     cmd->add_option("--width", o->width, "Pixels across (a multiple of " + tile + ")")

@@ -65,7 +65,11 @@ ChunkedRenderResult render_in_chunks(const Scene& scene, const RenderSettings& s
 #endif
 
     InterruptFlag interrupt;
-    Progress progress(o.spp, o.time_limit, o.progress && lead);
+    // Progress keeps its own clock, started here: the queue's starts with the
+    // first chunk, and a log should show lines while the devices get ready too.
+    ProgressOptions po;
+    po.log_interval = o.progress_interval;
+    Progress progress(o.spp, o.time_limit, o.progress && lead, po);
     auto last_checkpoint = std::chrono::steady_clock::now();
     std::uint64_t checkpointed_spp = farm.samples_per_pixel();
     auto poll = [&] {
@@ -75,7 +79,7 @@ ChunkedRenderResult render_in_chunks(const Scene& scene, const RenderSettings& s
             queue.stop();
             farm.cancel();
         }
-        progress.update(farm.samples_per_pixel(), queue.seconds_since_start());
+        progress.update(farm.samples_per_pixel());
         // A checkpoint is written when there is something new to keep.
         if (o.checkpoint_seconds > 0 && farm.samples_per_pixel() > checkpointed_spp &&
             std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >=

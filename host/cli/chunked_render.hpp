@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cl/device.hpp"
+#include "cli/progress.hpp"
 #include "render/device_farm.hpp"
 #include "render/exact_film.hpp"
 #include "render/settings.hpp"
@@ -23,6 +24,7 @@ struct ChunkedRenderOptions {
     std::string checkpoint_path;      // where checkpoints go
     std::string resume_path;          // a checkpoint to continue from; empty: none
     bool progress = true;
+    double progress_interval = kDefaultProgressInterval;  // seconds: the longest gap between lines in a log
 };
 
 struct ChunkedRenderResult {

@@ -118,7 +118,7 @@ Command add_export_command(CLI::App& app) {
         "dielectric (glass) materials, smooth shading normals, punctual lights (point, spot, directional: so a\n"
         "bare mesh's default sun too) and environment images. --format mitsuba exports every material and light.\n"
         "The output folder is created if missing.");
-    cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj) or built-in scene")->required();
+    cmd->add_option("scene", o->scene, scene_argument_help())->required();
     cmd->add_option("out", o->out, "Output scene file NAME.json; NAME.obj and NAME.mtl are written beside it")
         ->required();
     cmd->add_option("--width", o->width, "Image width (default: the scene's)")->check(whole_number(1, 16384));

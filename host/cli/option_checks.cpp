@@ -4,7 +4,15 @@
 #include <cmath>
 #include <cstdio>
 
+#include "scene/builtin_scenes.hpp"
+
 namespace clpath {
+
+std::string scene_argument_help() {
+    std::string names;
+    for (const auto& n : builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
+    return "Scene file (.json), mesh (.obj), glTF model (.gltf, .glb) or built-in scene (" + names + ")";
+}
 
 std::string plain_number(double v) {
     char buf[64];

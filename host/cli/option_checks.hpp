@@ -19,4 +19,7 @@ CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi);
 // A finite number in [lo, hi], or (lo, hi] when lo_open.
 CLI::Validator real_number(double lo, double hi, bool lo_open = false);
 
+// The help of every command's scene argument: each loads what render loads.
+std::string scene_argument_help();
+
 }  // namespace clpath

@@ -7,7 +7,6 @@
 #include "cli/option_checks.hpp"
 #include "render/renderer.hpp"
 #include "render/settings.hpp"
-#include "scene/builtin_scenes.hpp"
 #include "util/error.hpp"
 // The options struct is plain C++; only run_viewer() needs the viewer built in.
 #include "viewer/viewer.hpp"
@@ -17,9 +16,7 @@ namespace clpath {
 Command add_view_command(CLI::App& app) {
     auto o = std::make_shared<ViewerOptions>();
     CLI::App* cmd = app.add_subcommand("view", "Open a window that refines the image while you fly through the scene");
-    std::string names;
-    for (const auto& n : builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
-    cmd->add_option("scene", o->scene, "Scene file (.json), mesh (.obj) or built-in scene (" + names + ")")
+    cmd->add_option("scene", o->scene, scene_argument_help())
         ->capture_default_str();
     cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
     cmd->add_option("--width", o->width, "Window width (default: the scene's image width)")->check(whole_number(1, 16384));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cstdint>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -12,6 +13,8 @@
 
 #include <tiny_obj_loader.h>
 
+#include "scene/obj_text_encoding.hpp"
+#include "scene/obj_tokens.hpp"
 #include "scene/polygon_triangulation.hpp"
 #include "util/error.hpp"
 
@@ -19,48 +22,7 @@ namespace clpath {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-
-std::string_view next_token(std::string_view& s) {
-    std::size_t i = 0;
-    while (i < s.size() && is_space(s[i])) ++i;
-    std::size_t j = i;
-    while (j < s.size() && !is_space(s[j])) ++j;
-    std::string_view tok = s.substr(i, j - i);
-    s.remove_prefix(j);
-    return tok;
-}
-
-// The line starting at pos, without its end; pos moves past the end. Lines
-// end where tinyobjloader ends them: at \n, \r or \r\n.
-std::string_view next_line(const std::string& text, std::size_t& pos) {
-    std::size_t end = text.find('\n', pos);  // memchr-fast, then \r within the line only
-    if (end == std::string::npos) end = text.size();
-    const void* cr = std::memchr(text.data() + pos, '\r', end - pos);
-    if (cr) end = std::size_t(static_cast<const char*>(cr) - text.data());
-    const std::string_view line(text.data() + pos, end - pos);
-    pos = end;
-    if (pos < text.size() && text[pos++] == '\r' && pos < text.size() && text[pos] == '\n') ++pos;
-    return line;
-}
-
-bool parse_double(std::string_view t, double& out) {
-    if (!t.empty() && t[0] == '+') t.remove_prefix(1);
-    if (t.empty()) return false;
-    const auto r = std::from_chars(t.data(), t.data() + t.size(), out);
-    if (r.ptr != t.data() + t.size()) return false;
-    // 1e999 is a number, just not a finite one: said so by the caller.
-    if (r.ec == std::errc::result_out_of_range) out = HUGE_VAL;
-    return r.ec == std::errc() || r.ec == std::errc::result_out_of_range;
-}
-
-bool parse_int(std::string_view t, long long& out) {
-    if (!t.empty() && t[0] == '+') t.remove_prefix(1);
-    if (t.empty()) return false;
-    const auto r = std::from_chars(t.data(), t.data() + t.size(), out);
-    return r.ec == std::errc() && r.ptr == t.data() + t.size();
-}
+using namespace obj_text;
 
 // What the line-by-line check learns on the way.
 struct Scan {
@@ -72,6 +34,17 @@ struct Scan {
     };
     std::vector<Named> mtllibs;
     std::vector<Named> usemtl;  // first use of each name
+    std::vector<int> empty_usemtl;  // lines of usemtl statements that name nothing
+    // Every face's corner count, in file order: tinyobjloader keeps only the
+    // count modulo 256 (an unsigned char), so a face of 300 corners would
+    // take its neighbours' corners.
+    std::vector<std::uint32_t> face_corners;
+    // Lines whose numbers had text after them ("3.1+e2"), rewritten with the
+    // numbers alone, which is what tinyobjloader is handed; the first one's
+    // warning, and how many there were.
+    std::map<int, std::string> rewritten;
+    std::string trailing_text_warning;
+    std::size_t trailing_text_count = 0;
     int first_mtllib_line = 0, first_usemtl_line = 0;
 };
 
@@ -83,12 +56,26 @@ Scan scan_obj(const std::string& text, const std::string& file) {
     int line_no = 0;
     std::size_t pos = 0;
     auto fail = [&](const std::string& what) -> void { throw Error(file + ":" + std::to_string(line_no) + ": " + what); };
-    auto check_numbers = [&](std::string_view rest, const char* what, std::size_t min_count) {
+    auto check_numbers = [&](std::string_view key, std::string_view rest, const char* what, std::size_t min_count) {
         std::size_t n = 0;
+        std::string numbers(key);  // the line with each number's text alone
+        bool rewrite = false;
         for (std::string_view tok = next_token(rest); !tok.empty() && tok[0] != '#'; tok = next_token(rest)) {
             double d;
-            if (!parse_double(tok, d))
-                fail(std::string(what) + ": '" + std::string(tok) + "' is not a number");
+            std::string_view number = tok;
+            if (!parse_double(tok, d)) {
+                // As assimp and Blender read it: the number it starts with, and a warning.
+                const std::size_t len = parse_leading_double(tok, d);
+                if (len == 0) fail(std::string(what) + ": '" + std::string(tok) + "' is not a number");
+                number = tok.substr(0, len);
+                rewrite = true;
+                if (s.trailing_text_count++ == 0)
+                    s.trailing_text_warning = file + ":" + std::to_string(line_no) + ": " + what + ": '" +
+                                              std::string(tok) + "' is not a number; read as " + std::string(number) +
+                                              ", the number it starts with, as assimp and Blender read it";
+            }
+            numbers += " ";
+            numbers += number;
             if (!std::isfinite(d)) fail(std::string(what) + ": '" + std::string(tok) + "' is not a finite number");
             if (std::fabs(d) > 3.0e38) fail(std::string(what) + ": '" + std::string(tok) + "' is too large for a float");
             ++n;
@@ -96,6 +83,7 @@ Scan scan_obj(const std::string& text, const std::string& file) {
         if (n < min_count)
             fail(std::string(what) + " needs at least " + std::to_string(min_count) + " numbers, got " +
                  std::to_string(n));
+        if (rewrite) s.rewritten[line_no] = std::move(numbers);
     };
     auto check_index = [&](std::string_view tok, std::string_view part, std::size_t defined, const char* kind,
                            const char* kinds) {
@@ -114,13 +102,13 @@ Scan scan_obj(const std::string& text, const std::string& file) {
         const std::string_view key = next_token(rest);
         if (key.empty() || key[0] == '#') continue;
         if (key == "v") {
-            check_numbers(rest, "vertex", 3);
+            check_numbers(key, rest, "vertex", 3);
             ++s.v;
         } else if (key == "vn") {
-            check_numbers(rest, "normal", 3);
+            check_numbers(key, rest, "normal", 3);
             ++s.vn;
         } else if (key == "vt") {
-            check_numbers(rest, "texture coordinate", 1);
+            check_numbers(key, rest, "texture coordinate", 1);
             ++s.vt;
         } else if (key == "f") {
             std::size_t corners = 0;
@@ -143,17 +131,21 @@ Scan scan_obj(const std::string& text, const std::string& file) {
             if (corners < 3)
                 fail("face has " + std::to_string(corners) + " corner" + (corners == 1 ? "" : "s") +
                      ", at least 3 are needed");
+            s.face_corners.push_back(std::uint32_t(corners));
         } else if (key == "mtllib") {
             bool any = false;
             for (std::string_view tok = next_token(rest); !tok.empty(); tok = next_token(rest)) {
-                s.mtllibs.push_back({std::string(tok), line_no});
+                s.mtllibs.push_back({with_slashes(std::string(tok)), line_no});
                 any = true;
             }
             if (!any) fail("mtllib names no file");
             if (!s.first_mtllib_line) s.first_mtllib_line = line_no;
         } else if (key == "usemtl") {
-            const std::string name(next_token(rest));
-            if (name.empty()) fail("usemtl names no material");
+            const std::string name = name_of(rest);
+            if (name.empty()) {
+                s.empty_usemtl.push_back(line_no);
+                continue;
+            }
             bool seen = false;
             for (const auto& u : s.usemtl) seen = seen || u.name == name;
             if (!seen) s.usemtl.push_back({name, line_no});
@@ -203,15 +195,34 @@ void scan_mtl(const std::string& text, const std::string& file) {
 // some unchecked: a vw joint id of 1e38 is converted to int out of range,
 // which is undefined behaviour. It is handed only the statements clpath
 // reads; every other line is emptied, so line numbers stay the same.
-std::string statements_clpath_reads(const std::string& text) {
+// tinyobjloader reads a usemtl name up to the first space, so each usemtl
+// line is handed over naming its material by a key without spaces
+// (key_of_name); one that names nothing is emptied (the faces after it keep
+// the material before it, as in assimp).
+// Lines in `rewritten` (by number) are handed over as given there.
+std::string statements_clpath_reads(const std::string& text, const std::map<std::string, std::string>& key_of_name,
+                                    const std::map<int, std::string>& rewritten) {
     std::string out;
     out.reserve(text.size());
+    int line_no = 0;
     for (std::size_t pos = 0; pos < text.size();) {
         const std::size_t start = pos;
         const std::string_view line = next_line(text, pos);
+        ++line_no;
+        if (auto it = rewritten.find(line_no); it != rewritten.end()) {
+            out += it->second;
+            out.append(text, start + line.size(), pos - start - line.size());
+            continue;
+        }
         std::string_view rest = line;
         const std::string_view key = next_token(rest);
-        const bool used = key == "v" || key == "vn" || key == "vt" || key == "f" || key == "mtllib" || key == "usemtl";
+        if (key == "usemtl") {
+            const std::string name = name_of(rest);
+            if (!name.empty()) out += "usemtl " + key_of_name.at(name);
+            out.append(text, start + line.size(), pos - start - line.size());
+            continue;
+        }
+        const bool used = key == "v" || key == "vn" || key == "vt" || key == "f" || key == "mtllib";
         const std::size_t from = used ? start : start + line.size();
         out.append(text, from, pos - from);
     }
@@ -350,7 +361,8 @@ constexpr const char* kMaterialsTag = "__clpath_materials__";
 
 }  // namespace
 
-ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFile& read_file) {
+ObjMesh parse_obj(const std::string& raw_text, const std::string& file, const ReadFile& read_file) {
+    const std::string text = obj_text_as_utf8(raw_text, file);
     const Scan scan = scan_obj(text, file);
     ObjMesh mesh;
 
@@ -371,6 +383,7 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
                                     e.what() + "; the materials it would define are the default grey");
             continue;
         }
+        mtl_text = obj_text_as_utf8(std::move(mtl_text), path);
         if (mtl_text.find('\0') != std::string::npos) throw Error(path + ": contains a NUL byte (is this an MTL file?)");
         scan_mtl(mtl_text, path);
         std::vector<tinyobj::material_t> got;
@@ -379,7 +392,8 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
         std::string warn, err;
         tinyobj::LoadMtl(&got_map, &got, &in, &warn, &err);
         if (!err.empty()) throw Error(path + ": " + err);
-        for (const auto& m : got) {
+        for (auto m : got) {
+            m.name = name_of(m.name);  // tinyobjloader keeps the spaces after it
             if (tmap.count(m.name)) continue;  // the first definition wins, as in tinyobjloader
             ObjMaterial om;
             om.name = m.name;
@@ -390,7 +404,9 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
                 // (Kd is the colour where the map is absent), metallic Pm,
                 // roughness Pr or from Ns, cut out by map_d.
                 const fs::path dir = fs::path(path).parent_path();
-                auto resolve = [&](const std::string& n) { return n.empty() ? n : (dir / n).lexically_normal().string(); };
+                auto resolve = [&](const std::string& n) {
+                    return n.empty() ? n : (dir / with_slashes(n)).lexically_normal().string();
+                };
                 om.diffuse_texture = resolve(m.diffuse_texname);
                 om.alpha_texture = resolve(m.alpha_texname);
                 float rough = float(m.roughness);
@@ -425,6 +441,11 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
         mesh.materials.push_back(om);
     }
     if (textures) mesh.warnings.push_back(file + ": texture maps other than map_Kd and map_d in its materials are ignored");
+    if (scan.trailing_text_count)
+        mesh.warnings.push_back(scan.trailing_text_warning +
+                                (scan.trailing_text_count > 1
+                                     ? " (and " + std::to_string(scan.trailing_text_count - 1) + " more such numbers)"
+                                     : std::string()));
     if (scan.lines_points)
         mesh.warnings.push_back(file + ": " + std::to_string(scan.lines_points) + " line and point elements ignored");
 
@@ -432,12 +453,23 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> unused;
     std::string warn, err;
-    PreparedMaterials reader(tmats, tmap);
+    for (int line : scan.empty_usemtl)
+        mesh.warnings.push_back(file + ":" + std::to_string(line) +
+                                ": usemtl names no material; ignored (the faces after it keep the material before it)");
+    // tinyobjloader knows the materials by keys without spaces.
+    std::map<std::string, int> tiny_map;
+    std::map<std::string, std::string> key_of_name;
+    for (const auto& [name, i] : tmap) {
+        const std::string key = "m" + std::to_string(i);
+        tiny_map[key] = i;
+        key_of_name[name] = key;
+    }
+    PreparedMaterials reader(tmats, tiny_map);
     // tinyobjloader resolves usemtl when it reads it, so the materials must be
     // in before the first usemtl: a leading mtllib line of our own when the
     // file uses a material before naming a library (or names none).
     const bool need_tag = scan.first_usemtl_line && (!scan.first_mtllib_line || scan.first_usemtl_line < scan.first_mtllib_line);
-    const std::string statements = statements_clpath_reads(text);
+    const std::string statements = statements_clpath_reads(text, key_of_name, scan.rewritten);
     std::istringstream in(need_tag ? std::string("mtllib ") + kMaterialsTag + "\n" + statements : statements);
     // Faces come whole (triangulate = false): tinyobjloader cuts a quad along
     // its shorter diagonal, which lies outside a concave one.
@@ -453,11 +485,14 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
                              std::any_of(attrib.colors.begin(), attrib.colors.end(), [](tinyobj::real_t c) { return c != 1; });
     std::vector<glm::vec3> polygon;
     std::vector<std::array<std::size_t, 3>> cut;
+    std::size_t face_no = 0;  // in file order, across shapes
     for (const auto& shape : shapes) {
         const auto& m = shape.mesh;
         std::size_t first = 0;
         for (std::size_t f = 0; f < m.num_face_vertices.size(); ++f) {
-            const std::size_t corners = m.num_face_vertices[f];
+            if (face_no >= scan.face_corners.size() || (scan.face_corners[face_no] & 0xFFu) != m.num_face_vertices[f])
+                throw Error(file + ": internal: tinyobjloader read other faces than the line check");
+            const std::size_t corners = scan.face_corners[face_no++];
             if (first + corners > m.indices.size()) throw Error(file + ": internal: tinyobjloader face list is short");
             const int mat = f < m.material_ids.size() ? m.material_ids[f] : -1;
             if (mat >= int(mesh.materials.size())) throw Error(file + ": internal: material id out of range");
@@ -501,7 +536,9 @@ ObjMesh parse_obj(const std::string& text, const std::string& file, const ReadFi
             }
             first += corners;
         }
+        if (first != m.indices.size()) throw Error(file + ": internal: tinyobjloader face list is long");
     }
+    if (face_no != scan.face_corners.size()) throw Error(file + ": internal: tinyobjloader read fewer faces than the line check");
     return mesh;
 }
 

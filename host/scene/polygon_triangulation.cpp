@@ -33,6 +33,18 @@ std::vector<Tri> triangulate_polygon(const std::vector<glm::vec3>& corners) {
         if (idx.empty() || corners[i] != corners[idx.back()]) idx.push_back(i);
     while (idx.size() > 1 && corners[idx.back()] == corners[idx.front()]) idx.pop_back();
     if (idx.size() < 3) return fan(n0);
+    // An outline gone round more than once ("f 1 2 3 4 1 2 3 4 ...", as in
+    // assimp's box_longline.obj) is the face once: ear clipping would lay
+    // copies over it, some of them turned over.
+    for (std::size_t period = 3; period * 2 <= idx.size(); ++period) {
+        if (idx.size() % period) continue;
+        bool repeats = true;
+        for (std::size_t i = period; i < idx.size() && repeats; ++i) repeats = corners[idx[i]] == corners[idx[i - period]];
+        if (repeats) {
+            idx.resize(period);
+            break;
+        }
+    }
 
     // Newell's method: the area-weighted normal, sound for concave and
     // slightly non-planar polygons alike. In double: corners may be far from

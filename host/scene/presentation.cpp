@@ -1,7 +1,9 @@
 #include "scene/presentation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <tuple>
 
 #include "util/error.hpp"
 
@@ -54,13 +56,30 @@ float framing_distance(const Bounds& b, glm::vec3 d, float vfov_deg, float aspec
 glm::vec3 presentation_view_direction(const Scene& s) {
     // The triangles' area-weighted normals, at most ~200k of them: the score
     // is a sum, and a regular subsample of a big mesh estimates it well.
-    std::vector<glm::vec3> an;  // normal * area
+    // A triangle listed more than once (a face written twice, or a polygon
+    // that goes round its corners again and again, as in assimp's
+    // box_longline.obj) counts once: else one face outweighs the rest and
+    // the view turns face-on to it.
+    std::vector<std::array<float, 9>> tris;
     const std::size_t n = s.triangle_count();
     const std::size_t stride = std::max<std::size_t>(1, n / 200000);
     for (std::size_t t = 0; t < n; t += stride) {
-        const glm::vec3 a = s.vertices[3 * t], b = s.vertices[3 * t + 1], c = s.vertices[3 * t + 2];
+        std::array<glm::vec3, 3> c{s.vertices[3 * t], s.vertices[3 * t + 1], s.vertices[3 * t + 2]};
+        // (A non-finite corner would also break the sort's ordering.)
+        if (!std::isfinite(c[0].x + c[0].y + c[0].z + c[1].x + c[1].y + c[1].z + c[2].x + c[2].y + c[2].z)) continue;
+        // The same triangle from any starting corner, its winding (facing) kept.
+        auto less = [](glm::vec3 p, glm::vec3 q) { return std::tie(p.x, p.y, p.z) < std::tie(q.x, q.y, q.z); };
+        const std::size_t first = less(c[1], c[0]) ? (less(c[2], c[1]) ? 2 : 1) : (less(c[2], c[0]) ? 2 : 0);
+        std::rotate(c.begin(), c.begin() + first, c.end());
+        tris.push_back({c[0].x, c[0].y, c[0].z, c[1].x, c[1].y, c[1].z, c[2].x, c[2].y, c[2].z});
+    }
+    std::sort(tris.begin(), tris.end());
+    tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+    std::vector<glm::vec3> an;  // normal * area
+    for (const auto& t : tris) {
+        const glm::vec3 a(t[0], t[1], t[2]), b(t[3], t[4], t[5]), c(t[6], t[7], t[8]);
         const glm::vec3 cr = 0.5f * glm::cross(b - a, c - a);
-        if (std::isfinite(cr.x + cr.y + cr.z)) an.push_back(cr);
+        if (std::isfinite(cr.x + cr.y + cr.z)) an.push_back(cr);  // finite corners can still overflow
     }
     glm::vec3 best(0, 0, 1);
     double best_score = -1;

@@ -150,3 +150,12 @@ clpath_scene_cli_test(gltf_bad_index FAIL ARGS render ${SCENE_DATA}/bad-index.gl
                       OUTPUT "bad-index.gltf: meshes\\[0\\]\\.primitives\\[0\\]\\.indices: index 9 at position 5 is out of range"
                       FORBID ${CLI_OUT}/bad-gltf.pfm)
 include(${CMAKE_CURRENT_SOURCE_DIR}/cli/usage_tests.cmake)
+
+# The progress printer's line schedule (host/cli is the program, not the
+# library: its source is built into the test).
+target_sources(progress_test PRIVATE ${CMAKE_SOURCE_DIR}/host/cli/progress.cpp)
+# A render logging to a file writes a line at least every interval (shortened
+# to 1 s here by CLPATH_PROGRESS_INTERVAL_MS).
+add_test(NAME cli.progress_lines_in_a_log
+         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/progress_log.sh $<TARGET_FILE:clpath> ${CLI_OUT}/progress)
+set_tests_properties(cli.progress_lines_in_a_log PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 300)

@@ -29,6 +29,12 @@ clpath_usage_test(missing_value RC 2 ARGS render --spp OUTPUT "^clpath: error: -
 clpath_usage_test(no_subcommand RC 2 ARGS "" OUTPUT "^clpath: error: .*subcommand")
 clpath_usage_test(missing_positional RC 2 ARGS compare OUTPUT "^clpath: error: image is required")
 clpath_usage_test(help_is_not_an_error RC 0 ARGS render --help OUTPUT "--tonemap")
+# Every command that takes a scene loads what render loads, and says so.
+foreach(cmd view export bench_rays bench_build bench_convergence)
+    string(REPLACE "_" ";" words ${cmd})
+    clpath_usage_test(${cmd}_help_names_scene_kinds RC 0 ARGS ${words} --help
+                      OUTPUT "glTF model \\(\\.gltf, \\.glb\\) or built-in scene \\(cornell, scaling:N, room:N\\)")
+endforeach()
 
 # --- numbers: non-finite, negative, out of range ---------------------------------------------
 clpath_usage_test(time_nan RC 2 ARGS render --time nan
@@ -76,6 +82,11 @@ clpath_usage_test(memory_limit_negative RC 2 ENV CLPATH_DEVICE_MEMORY_LIMIT=-5 A
                   OUTPUT "clpath: error: CLPATH_DEVICE_MEMORY_LIMIT='-5': expected a whole number")
 clpath_usage_test(memory_limit_zero RC 2 ENV CLPATH_DEVICE_MEMORY_LIMIT=0 ARGS render ${SMALL} -o ${USAGE_OUT}/mem3.pfm
                   OUTPUT "clpath: error: CLPATH_DEVICE_MEMORY_LIMIT='0': expected a whole number of bytes from 1")
+clpath_usage_test(progress_interval_not_a_number RC 2 ENV CLPATH_PROGRESS_INTERVAL_MS=1.5 ARGS render ${SMALL} -o ${USAGE_OUT}/pi.pfm
+                  OUTPUT "clpath: error: CLPATH_PROGRESS_INTERVAL_MS='1\\.5': expected a whole number of milliseconds from 10 to 86400000"
+                  FORBID ${USAGE_OUT}/pi.pfm)
+clpath_usage_test(progress_interval_too_short RC 2 ENV CLPATH_PROGRESS_INTERVAL_MS=0 ARGS render ${SMALL} -o ${USAGE_OUT}/pi.pfm
+                  OUTPUT "clpath: error: CLPATH_PROGRESS_INTERVAL_MS='0': expected a whole number of milliseconds from 10")
 
 # --- outputs --------------------------------------------------------------------------------
 clpath_usage_test(out_is_folder_with_slash RC 2 ARGS render ${SMALL} -o ${USAGE_OUT}/a-folder/
@@ -114,6 +125,8 @@ clpath_usage_test(env_colour RC 0 ARGS render ${CLI_DATA}/yz-plate.obj ${SMALL} 
                   OUTPUT "summary: ")
 clpath_usage_test(no_ground_on_builtin_warns RC 0 ARGS render ${SMALL} --no-ground -o ${USAGE_OUT}/ng.pfm
                   OUTPUT "warning: --no-ground has no effect on cornell: only a bare mesh gets a ground")
+clpath_usage_test(no_ground_on_gltf_warns RC 0 ARGS render ${CMAKE_SOURCE_DIR}/scenes/suzanne/Suzanne.gltf ${SMALL} --no-ground
+                  -o ${USAGE_OUT}/ng-gltf.pfm OUTPUT "warning: --no-ground has no effect on .*Suzanne\\.gltf: only a bare mesh gets a ground")
 
 # --- export ---------------------------------------------------------------------------------
 file(REMOVE_RECURSE ${USAGE_OUT}/export-made)

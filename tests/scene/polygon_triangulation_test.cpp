@@ -95,6 +95,28 @@ TEST(PolygonTriangulation, RepeatedCornersAreDropped) {
     EXPECT_NEAR(area(q, t), 0.5, 1e-6);
 }
 
+// An outline gone round several times (assimp's box_longline.obj: a square
+// written 234 times over in one face) is the face once, every triangle
+// facing the way the outline winds.
+TEST(PolygonTriangulation, OutlineGoneRoundTwiceOrMoreIsTheFaceOnce) {
+    const std::vector<glm::vec3> square{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    for (int rounds : {2, 3, 234}) {
+        std::vector<glm::vec3> q;
+        for (int r = 0; r < rounds; ++r) q.insert(q.end(), square.begin(), square.end());
+        const Tris t = triangulate_polygon(q);
+        ASSERT_EQ(t.size(), 2u) << rounds;
+        expect_inside(square, t);
+        EXPECT_NEAR(area(q, t), 1.0, 1e-6);
+    }
+    // A keyhole (an outer square and an inner one joined by a bridge walked
+    // both ways) repeats corners but is no repeat of a shorter outline: its
+    // hole stays open.
+    const std::vector<glm::vec3> keyhole{{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, {0, 0, 0}, {1, 1, 0},
+                                         {1, 3, 0}, {3, 3, 0}, {3, 1, 0}, {1, 1, 0}};
+    const Tris k = triangulate_polygon(keyhole);
+    EXPECT_NEAR(area(keyhole, k), 16.0 - 4.0, 1e-5);
+}
+
 TEST(ObjPolygons, ConcaveFaceInAFileCoversItsOwnArea) {
     test::MemoryFiles files;
     // The dart as one OBJ face: what reaches the scene covers exactly its area.
@@ -105,6 +127,33 @@ TEST(ObjPolygons, ConcaveFaceInAFileCoversItsOwnArea) {
     for (std::size_t t = 0; t < 2; ++t)
         a += 0.5 * glm::length(glm::cross(m.vertices[3 * t + 1] - m.vertices[3 * t], m.vertices[3 * t + 2] - m.vertices[3 * t]));
     EXPECT_NEAR(a, 0.75, 1e-5);
+}
+
+// A face of more than 255 corners: tinyobjloader keeps a face's corner count
+// in a byte, so a 300-gon would lose 256 corners to the faces after it.
+TEST(ObjPolygons, FacesOfMoreThan255CornersStayWhole) {
+    std::string obj;
+    const int n = 300;
+    for (int i = 0; i < n; ++i) {
+        const double a = 2 * 3.14159265358979 * i / n;
+        obj += "v " + std::to_string(std::cos(a)) + " " + std::to_string(std::sin(a)) + " 0\n";
+    }
+    obj += "v 5 0 0\nv 6 0 0\nv 5 1 0\nf";
+    for (int i = 1; i <= n; ++i) obj += " " + std::to_string(i);
+    obj += "\nf 301 302 303\n";
+    test::MemoryFiles files;
+    const ObjMesh m = parse_obj(obj, "m/disc.obj", files.options().read_file);
+    ASSERT_EQ(m.triangle_count(), std::size_t(n - 2 + 1));
+    double a = 0;
+    for (std::size_t t = 0; t + 1 < m.triangle_count(); ++t) {
+        const glm::vec3 c = (m.vertices[3 * t] + m.vertices[3 * t + 1] + m.vertices[3 * t + 2]) / 3.0f;
+        EXPECT_LT(glm::length(c), 1.0f);  // inside the disc
+        a += 0.5 * glm::length(glm::cross(m.vertices[3 * t + 1] - m.vertices[3 * t], m.vertices[3 * t + 2] - m.vertices[3 * t]));
+    }
+    EXPECT_NEAR(a, 0.5 * n * std::sin(2 * 3.14159265358979 / n), 1e-4);  // the 300-gon's area
+    const std::size_t last = m.triangle_count() - 1;
+    EXPECT_EQ(m.vertices[3 * last], glm::vec3(5, 0, 0));
+    EXPECT_EQ(m.vertices[3 * last + 2], glm::vec3(5, 1, 0));
 }
 
 TEST(ObjPolygons, RepeatedCornersKeepTheFace) {

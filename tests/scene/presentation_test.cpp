@@ -50,6 +50,26 @@ TEST(Presentation, FlatModelsAreSeenFaceOn) {
     EXPECT_GT(std::abs(cube.z), 0.3f);
 }
 
+// One face of the cube listed again and again (assimp's box_longline.obj
+// writes it as one polygon going round its four corners 35 times): still
+// the three-quarter view, not face-on to the repeated face.
+TEST(Presentation, RepeatedFacesCountOnce) {
+    PresentationOptions mesh_only;
+    mesh_only.ground = false;
+    std::string copies = kCube, polygon = std::string(kCube) + "f";
+    for (int i = 0; i < 40; ++i) copies += "f 5 6 7 8\n", polygon += " 5 6 7 8";
+    for (const std::string& obj : {copies, polygon + "\n"}) {
+        const Scene s = bare(obj, mesh_only);
+        ASSERT_GE(s.triangle_count(), 12u);
+        const glm::vec3 d = presentation_view_direction(s);
+        EXPECT_GT(std::abs(d.x), 0.3f);
+        EXPECT_GT(d.y, 0.3f);
+        EXPECT_GT(d.z, 0.3f);  // the repeated face (+z) is in view
+        const glm::vec3 cube = presentation_view_direction(bare(kCube, mesh_only));
+        EXPECT_EQ(d, cube);
+    }
+}
+
 TEST(Presentation, AddsCameraGroundSkyAndSun) {
     const Scene s = bare(kCube);
     ASSERT_EQ(s.lights.size(), 1u);
