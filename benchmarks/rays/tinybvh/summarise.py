@@ -7,6 +7,7 @@ META_FILE holds key=value lines (date, commit, tinybvh_commit, device, ...).
 Ratios are the median over rounds of each round's ratio (clpath and the other
 tracer ran back to back in each round, so they met about the same load)."""
 import csv
+import datetime
 import statistics
 import sys
 from collections import defaultdict
@@ -93,7 +94,9 @@ def main():
     add("")
     add(f"- Device: `{meta['device']}` ({meta['platform']}), {meta['cpu']}, {cores} cores; every tracer on the same "
         "OpenCL device (Embree on the same cores).")
-    add(f"- Date: {meta['date_start']} to {meta['date_end']}. clpath commit: {meta['commit']}. tinybvh commit: "
+    minutes = (datetime.datetime.strptime(meta["date_end"], "%Y-%m-%d %H:%M UTC") -
+               datetime.datetime.strptime(meta["date_start"], "%Y-%m-%d %H:%M UTC")).total_seconds() / 60
+    add(f"- Date: {meta['date_start']} to {meta['date_end']} (the whole run: {minutes:.0f} minutes). clpath commit: {meta['commit']}. tinybvh commit: "
         f"{meta['tinybvh_commit']} (tinybvh {meta['tinybvh_version']}), from {meta['tinybvh_origin']}.")
     if shared:
         add(f"- **The machine was shared** with other work: load average (1 min) {min(loads):.1f} to {max(loads):.1f} "
