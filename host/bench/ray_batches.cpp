@@ -303,6 +303,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
         if (primary_result[i].tri >= 0) hit_list.push_back(std::uint32_t(i));
     prim.hits = hit_list.size();
     prim.agreement = check_closest(reference, structure.triangles, primary_rays, primary_result, o.check);
+    if (o.on_traced) o.on_traced(RayBatchKind::Primary, primary_rays, closest_hit_results(primary_result));
     if (embree) prim.embree = embree_closest(*embree, reference, structure.triangles, leaf_of, primary_rays, o);
     res.batches.push_back(prim);
     if (!hit_list.empty()) ctx.write(src, hit_list.data(), hit_list.size() * sizeof(std::uint32_t));
@@ -329,7 +330,10 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
         ctx.read(secondary_hits, occluder.data(), m * sizeof(int));
         for (int x : occluder) shadow.hits += x >= 0;
         shadow.agreement = check_any(reference, rays, occluder, o.check);
+        if (o.on_traced) o.on_traced(RayBatchKind::Shadow, rays, any_hit_results(occluder));
         if (embree) shadow.embree = embree_any(*embree, reference, rays, o);
+    } else if (o.on_traced) {
+        o.on_traced(RayBatchKind::Shadow, {}, {});
     }
     res.batches.push_back(shadow);
 
@@ -347,7 +351,10 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
         ctx.read(secondary_hits, hits);
         for (const auto& h : hits) diffuse.hits += h.tri >= 0;
         diffuse.agreement = check_closest(reference, structure.triangles, rays, hits, o.check);
+        if (o.on_traced) o.on_traced(RayBatchKind::Diffuse, rays, closest_hit_results(hits));
         if (embree) diffuse.embree = embree_closest(*embree, reference, structure.triangles, leaf_of, rays, o);
+    } else if (o.on_traced) {
+        o.on_traced(RayBatchKind::Diffuse, {}, {});
     }
     res.batches.push_back(diffuse);
     return res;

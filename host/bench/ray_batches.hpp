@@ -16,6 +16,7 @@
 
 #include <glm/glm.hpp>
 
+#include "bench/ray_files.hpp"
 #include "bvh/accel.hpp"
 #include "cl/context.hpp"
 #include "cl/kernel_info.hpp"
@@ -33,6 +34,9 @@ struct RayBenchOptions {
     std::uint32_t seed = 0;                    // diffuse directions
     BvhBuildOptions bvh;
     bool embree = true;  // trace every batch with Embree too, when built with it (bench/embree_baseline.hpp)
+    // Hears each batch's rays and the device's answers once it is traced (for
+    // --save-rays: bench/ray_files.hpp); empty batches too. May be empty.
+    std::function<void(RayBatchKind, const std::vector<BatchRay>&, const std::vector<float>& result)> on_traced;
 };
 
 // How a batch's device results compare with the CPU reference.

@@ -1,6 +1,7 @@
 // clpath bench rays: the ray-batch traversal benchmark (bench/ray_batches.hpp).
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -8,6 +9,7 @@
 
 #include "bench/embree_baseline.hpp"
 #include "bench/ray_batches.hpp"
+#include "bench/ray_files.hpp"
 #include "bench/report_files.hpp"
 #include "cl/context.hpp"
 #include "cli/commands.hpp"
@@ -22,7 +24,7 @@ namespace {
 struct RaysOptions {
     std::string scene;
     int width = 480, height = 320;
-    std::string camera, light, csv, device, accel = "bvh";
+    std::string camera, light, csv, device, accel = "bvh", save_rays;
     int launches = 5;
     std::size_t workgroup = 64, check = std::size_t(1) << 18;
     std::uint32_t seed = 0;
@@ -61,6 +63,7 @@ int run_rays(const RaysOptions& o) {
         bo.light = glm::vec3(l[0], l[1], l[2]);
     }
     if (!o.csv.empty()) check_report_path(o.csv, "--csv");
+    if (!o.save_rays.empty()) check_ray_folder(o.save_rays, "--save-rays");
 
     Scene scene = load_scene(o.scene);
     for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
@@ -78,12 +81,25 @@ int run_rays(const RaysOptions& o) {
     std::fprintf(stderr, "clpath: bench rays '%s' (%zu triangles, %s) at %dx%d x %u samples on %s\n", scene.name.c_str(),
                  scene.triangle_count(), accel_name(bo.accel), bo.width, bo.height, CLP_BATCH_SAMPLES,
                  device.describe().c_str());
+    // Each batch's file is written whole (through a rename) once traced; a
+    // run that fails later removes the ones it wrote, so a folder never holds
+    // part of a run.
+    std::vector<std::string> saved;
+    if (!o.save_rays.empty())
+        bo.on_traced = [&](RayBatchKind kind, const std::vector<BatchRay>& rays, const std::vector<float>& result) {
+            const std::string path = (std::filesystem::path(o.save_rays) / ray_file_name(kind)).string();
+            write_report_file(path, encode_ray_file(kind, rays, result));
+            saved.push_back(path);
+        };
     RayBenchResult r;
     try {
         r = run_ray_bench(ctx, scene, bo, [](const std::string& s) { std::fprintf(stderr, "clpath: %s\n", s.c_str()); });
     } catch (const Error& e) {
+        std::error_code ec;
+        for (const auto& p : saved) std::filesystem::remove(p, ec);
         throw Error(o.scene + ": " + e.what());
     }
+    for (const auto& p : saved) std::fprintf(stderr, "clpath: wrote %s\n", p.c_str());
     std::printf("scene: %s, %zu triangles, %s (%zu nodes, SAH %.2f, %.1f bytes per triangle), light %g,%g,%g, "
                 "work-group %zu, device \"%s\"\n",
                 r.scene.c_str(), r.triangles, accel_name(r.accel), r.structure.node_count, r.structure.sah_cost,
@@ -160,6 +176,9 @@ Command add_bench_rays_command(CLI::App& bench) {
         ->capture_default_str();
     cmd->add_option("--seed", o->seed, "Seed of the diffuse directions")->check(whole_number(0, 4294967295u))->capture_default_str();
     cmd->add_option("--csv", o->csv, "Write the results as CSV to this file");
+    cmd->add_option("--save-rays", o->save_rays,
+                    "Write each batch's rays and clpath's hits to primary.rays, shadow.rays and diffuse.rays in this "
+                    "existing folder (format: host/bench/ray_files.hpp), for tracing them with another tracer");
     cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
     cmd->add_flag("--quick", o->quick, "32x24 pixels, one timed launch, every ray checked (for CI)");
     cmd->add_flag("--no-embree", o->no_embree,

@@ -21,3 +21,13 @@ clpath_cli_test(bench_build_reports ARGS bench build room:3000 --repeat 2 --thre
                 OUTPUT "room-[0-9]+, [0-9]+ triangles, 2 threads, median [0-9.]+ ms of 2, [0-9.]+ Mtris/s, SAH [0-9.]+, [0-9]+ nodes")
 clpath_cli_test(bench_build_unknown_scene FAIL ARGS bench build no-such-scene OUTPUT "no-such-scene")
 clpath_cli_test(bench_build_bad_bins FAIL ARGS bench build cornell --bins 1 OUTPUT "bins")
+
+# --save-rays: the three batches' files, checked field by field against what the run printed.
+add_test(NAME cli.bench.rays_save_rays
+         COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:clpath>;bench;rays;cornell;--quick;--no-embree"
+                 -DDIR=${CLI_OUT}/saved-rays -P ${CMAKE_CURRENT_SOURCE_DIR}/bench/save_rays.cmake)
+set_tests_properties(cli.bench.rays_save_rays PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 300)
+clpath_cli_test(bench_rays_save_rays_missing_folder FAIL ARGS bench rays cornell --quick --no-embree
+                --save-rays ${CLI_OUT}/no-such-folder OUTPUT "--save-rays .*no-such-folder: folder does not exist")
+clpath_cli_test(bench_rays_save_rays_not_a_folder FAIL ARGS bench rays cornell --quick --no-embree
+                --save-rays ${CMAKE_SOURCE_DIR}/scenes/bunny.json OUTPUT "--save-rays .*bunny.json: is a file, not a folder")
