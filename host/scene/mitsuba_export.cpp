@@ -7,6 +7,7 @@
 #include <set>
 
 #include "scene/json_fields.hpp"
+#include "scene/mitsuba_gltf_export.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -67,6 +68,7 @@ std::string bsdf(const Material& m) {
 
 MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, const std::string& source) {
     if (scene.triangle_count() == 0) throw Error("the scene has no triangles");
+    if (!scene.colors.empty()) throw Error("vertex colours, which the exported OBJ meshes cannot carry");
     // Mitsuba is single precision too: the scene is moved so that the camera
     // sits at the origin (in double, then rounded once), which takes nothing
     // from a scene near the origin and keeps one far from it (scenes/hard)
@@ -83,8 +85,12 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
     const double back_offset = 1e-6 * glm::length(hi - lo);
 
     MitsubaExport out;
+    MitsubaTextureFiles tex;
+    tex.stem = stem;
     std::set<std::string> taken;
     std::string shapes, notes;
+    bool cutouts = false;
+    auto note = [&](const std::string& s) { notes += std::string(notes.empty() ? "" : ", ") + jsonf::quote(s); };
     for (std::uint32_t mi = 0; mi < scene.materials.size(); ++mi) {
         std::vector<std::size_t> tris;
         for (std::size_t t = 0; t < scene.triangle_count(); ++t)
@@ -92,15 +98,25 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
         if (tris.empty()) continue;
         const Material& m = scene.materials[mi];
         const std::string name = safe_name(mi < scene.material_names.size() ? scene.material_names[mi] : "", taken);
+        if (mitsuba_gltf_invisible(m)) {
+            note("'" + name + "': alpha MASK with a constant coverage below the cutoff: never hit, left out");
+            continue;
+        }
         const bool normals = !scene.normals.empty();
+        const bool uvs = !scene.uvs.empty();
         const bool two_sided = emits(m) && (m.flags & CLP_MATF_TWO_SIDED_EMISSION);
-        out.json += "    \"bsdf-" + name + "\": " + bsdf(m) + ",\n";
-        if (m.kind == CLP_MAT_CONDUCTOR && double(m.roughness) * m.roughness >= 1e-3)
-            notes += std::string(notes.empty() ? "" : ", ") +
-                     jsonf::quote("'" + name + "': Smith masking separable (Mitsuba) vs height-correlated (clpath)");
-        if (m.kind == CLP_MAT_DIELECTRIC && double(m.roughness) * m.roughness >= 1e-3)
-            notes += std::string(notes.empty() ? "" : ", ") +
-                     jsonf::quote("'" + name + "': Smith masking separable (Mitsuba) vs height-correlated (clpath)");
+        std::string b;
+        if (m.kind == CLP_MAT_GLTF) {
+            b = mitsuba_gltf_bsdf(scene, mi, name, tex);
+            cutouts = cutouts || mitsuba_gltf_has_cutout(m);
+            if (b.find("\"principled\"") != std::string::npos)
+                note("'" + name + "': metallic 1 as principled: Smith masking separable (Mitsuba) vs height-correlated (clpath)");
+        } else {
+            b = bsdf(m);
+        }
+        out.json += "    \"bsdf-" + name + "\": " + b + ",\n";
+        if ((m.kind == CLP_MAT_CONDUCTOR || m.kind == CLP_MAT_DIELECTRIC) && double(m.roughness) * m.roughness >= 1e-3)
+            note("'" + name + "': Smith masking separable (Mitsuba) vs height-correlated (clpath)");
         for (int side = 0; side < (two_sided ? 2 : 1); ++side) {
             const std::string file = stem + "-" + name + (side ? "-back" : "") + ".obj";
             std::string obj = "# clpath export of '" + scene.name + "' from " + source + ", material '" + name + "'" +
@@ -119,26 +135,31 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
                         for (auto& q : p) q -= n / len * back_offset;
                 }
                 for (int j = 0; j < 3; ++j) obj += "v " + num(p[j].x) + " " + num(p[j].y) + " " + num(p[j].z) + "\n";
-                if (normals) {
-                    const int order[3] = {0, side ? 2 : 1, side ? 1 : 2};
+                const int order[3] = {0, side ? 2 : 1, side ? 1 : 2};
+                if (normals)
                     for (int j : order) {
                         glm::vec3 sn = scene.normals[3 * t + j];
                         if (side) sn = -sn;
                         obj += "vn " + num(sn.x) + " " + num(sn.y) + " " + num(sn.z) + "\n";
                     }
-                    faces += "f " + std::to_string(k + 1) + "//" + std::to_string(k + 1) + " " + std::to_string(k + 2) +
-                             "//" + std::to_string(k + 2) + " " + std::to_string(k + 3) + "//" +
-                             std::to_string(k + 3) + "\n";
-                } else {
-                    faces += "f " + std::to_string(k + 1) + " " + std::to_string(k + 2) + " " + std::to_string(k + 3) + "\n";
+                // clpath's v, row 0 of the image at v = 0 (glTF's), is
+                // Mitsuba's with flip_tex_coords off.
+                if (uvs)
+                    for (int j : order) obj += "vt " + num(scene.uvs[3 * t + j].x) + " " + num(scene.uvs[3 * t + j].y) + "\n";
+                faces += "f";
+                for (int j = 1; j <= 3; ++j) {
+                    const std::string i = std::to_string(k + j);
+                    faces += " " + i + (uvs ? "/" + i : std::string(normals ? "/" : "")) + (normals ? "/" + i : "");
                 }
+                faces += "\n";
                 k += 3;
             }
             out.meshes.emplace_back(file, obj + faces);
             shapes += "    \"shape-" + name + (side ? "-back" : "") + "\": {\"type\": \"obj\", \"filename\": " +
                       jsonf::quote(file) + ", \"face_normals\": " + (normals ? "false" : "true") +
+                      (uvs ? ", \"flip_tex_coords\": false" : "") +
                       ", \"bsdf\": {\"type\": \"ref\", \"id\": \"bsdf-" + name + "\"}" +
-                      (emits(m) ? ", \"emitter\": {\"type\": \"area\", \"radiance\": " + rgb(load3(m.emission)) + "}"
+                      (emits(m) ? ", \"emitter\": {\"type\": \"area\", \"radiance\": " + mitsuba_gltf_radiance(scene, m, tex) + "}"
                                 : "") +
                       "},\n";
         }
@@ -191,7 +212,7 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
         ", \"width\": " + std::to_string(c.width) + ", \"height\": " + std::to_string(c.height) +
         ", \"spp\": " + std::to_string(r.spp) + ", \"max_depth\": " + std::to_string(r.max_depth) +
         ", \"shift\": " + jpos(-shift) + ", \"notes\": [" + notes + "]},\n  \"scene\": {\n    \"type\": \"scene\",\n" +
-        "    \"integrator\": {\"type\": \"path\", \"max_depth\": " + std::to_string(r.max_depth + 1) +
+        "    \"integrator\": {\"type\": \"" + (cutouts ? "volpath" : "path") + "\", \"max_depth\": " + std::to_string(r.max_depth + 1) +
         ", \"hide_emitters\": false},\n" +
         "    \"sensor\": {\"type\": \"perspective\", \"fov\": " + num(c.vfov_degrees) +
         ", \"fov_axis\": \"y\", \"near_clip\": " + num(1e-6 * diag) + ", \"far_clip\": " + num(1e3 * diag) +
@@ -204,6 +225,7 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
     if (out.json.size() >= 2 && out.json.compare(out.json.size() - 2, 2, ",\n") == 0)
         out.json.replace(out.json.size() - 2, 2, "\n");
     out.json = head + out.json + "  }\n}\n";
+    out.textures = std::move(tex.files);
     return out;
 }
 
