@@ -35,6 +35,7 @@ scenes=(
   "gltf-metals            benchmarks/references/scenes/gltf-metals.json    64 48"
   "gltf-cutout            benchmarks/references/scenes/gltf-cutout.json    64 48"
   "gltf-normal-map        benchmarks/references/scenes/gltf-normal-map.json 64 48"
+  "suzanne                scenes/suzanne/Suzanne.gltf                      64 48"
 )
 for s in "${scenes[@]}"; do
   read -r name scene w h <<<"$s"

@@ -105,6 +105,8 @@ const std::vector<Entry>& entries() {
          "glTF alpha MASK cut-out (texture alpha), seen and casting light through", 16},
         {"gltf-normal-map", "benchmarks/references/scenes/gltf-normal-map.json",
          "glTF material with a tangent-space normal map (scale 0.8)", 16},
+        {"suzanne", "scenes/suzanne/Suzanne.gltf",
+         "a glTF model: base colour and metallic-roughness textures, constant sky", 16},
     };
     return e;
 }
