@@ -149,7 +149,7 @@ class Threshold(mi.Texture):
 
     def __init__(self, props):
         mi.Texture.__init__(self, props)
-        self.nested = props["texture"]
+        self.nested = props.get_texture("texture")
         self.cutoff = props.get("cutoff", 0.5)
 
     def eval_1(self, si, active=True):
@@ -165,7 +165,29 @@ class Threshold(mi.Texture):
         return "Threshold[cutoff=%g]" % self.cutoff
 
 
+class Product(mi.Texture):
+    """texture_0 times texture_1 (clpath's base colour times vertex colours)."""
+
+    def __init__(self, props):
+        mi.Texture.__init__(self, props)
+        self.a = props.get_texture("texture_0")
+        self.b = props.get_texture("texture_1")
+
+    def eval(self, si, active=True):
+        return self.a.eval(si, active) * self.b.eval(si, active)
+
+    def eval_1(self, si, active=True):
+        return self.a.eval_1(si, active) * self.b.eval_1(si, active)
+
+    def mean(self):
+        return self.a.mean() * self.b.mean()
+
+    def to_string(self):
+        return "Product"
+
+
 def register():
     mi.register_bsdf("gltf_metallic_roughness", lambda props: GltfMetallicRoughness(props))
     mi.register_texture("threshold", lambda props: Threshold(props))
+    mi.register_texture("product", lambda props: Product(props))
 

@@ -36,6 +36,7 @@ scenes=(
   "gltf-cutout            benchmarks/references/scenes/gltf-cutout.json    64 48"
   "gltf-normal-map        benchmarks/references/scenes/gltf-normal-map.json 64 48"
   "suzanne                scenes/suzanne/Suzanne.gltf                      64 48"
+  "textured               scenes/textured/textured.json                    64 48"
 )
 for s in "${scenes[@]}"; do
   read -r name scene w h <<<"$s"

@@ -23,8 +23,11 @@ What the export leaves to this script ("clpath_" keys):
   metallic B, coverage A), the material's factor multiplied in, a normal
   map's scale applied to its x and y; the bitmap texture then filters and
   wraps them as clpath does (raw, bilinear or nearest, repeat/clamp/mirror);
-- the glTF material's plugin and the threshold texture of alpha MASK come
-  from gltf_bsdf.py;
+- the glTF material's plugin, the threshold texture of alpha MASK and the
+  product texture (base colour times vertex colours) come from gltf_bsdf.py;
+- vertex colours ("clpath_vertex_colors": RGB floats per corner, in the OBJ's
+  vertex order) become the shape's "vertex_color" attribute, which a
+  mesh_attribute texture interpolates as clpath does;
 - an environment image is turned to clpath's orientation and its texels are
   repeated 64x64 (Mitsuba interpolates between texel centres, clpath looks the
   nearest texel up; repeated texels confine the difference to seams 1/64 of
@@ -171,7 +174,18 @@ def main():
         fail(a.scene + ": not a file written by clpath export --format mitsuba")
     folder = os.path.dirname(os.path.abspath(a.scene))
     mi.file_resolver().prepend(folder)
+    colours = {k: v.pop("clpath_vertex_colors") for k, v in js["scene"].items()
+               if isinstance(v, dict) and "clpath_vertex_colors" in v}
     scene = mi.load_dict(convert(js["scene"], folder))
+    for shape in scene.shapes():
+        if shape.id() in colours:
+            path = os.path.join(folder, colours.pop(shape.id()))
+            rgb = np.fromfile(path, "<f4")
+            if rgb.size != 3 * shape.vertex_count():
+                fail("%s: %d values for a mesh of %d vertices" % (path, rgb.size, shape.vertex_count()))
+            shape.add_attribute("vertex_color", 3, mi.Float(rgb))
+    if colours:
+        fail("no shape with the id " + ", ".join(colours))
     info = js["clpath"]
     t0 = time.time()
     s1 = s2 = None

@@ -36,8 +36,9 @@ std::string safe_name(const std::string& name, std::set<std::string>& taken) {
     return unique;
 }
 
-// The BSDF that scatters as clpath's material does (see the header).
-std::string bsdf(const Material& m) {
+// The BSDF that scatters as clpath's material does (see the header); a
+// diffuse reflectance times the vertex colours when `colours`.
+std::string bsdf(const Material& m, bool colours) {
     const glm::vec3 c = load3(m.albedo);
     const double alpha = double(m.roughness) * m.roughness;
     const bool smooth = alpha < 1e-3;  // CLP_SMOOTH_ALPHA in kernels/materials.cl
@@ -60,15 +61,25 @@ std::string bsdf(const Material& m) {
                    ", \"ext_ior\": 1.0, \"specular_transmittance\": " + rgb(c) + "}";
         return "{\"type\": \"roughdielectric\", \"distribution\": \"ggx\", \"alpha\": " + num(alpha) +
                ", \"int_ior\": " + num(m.ior) + ", \"ext_ior\": 1.0, \"specular_transmittance\": " + rgb(c) + "}";
-    default: return twosided("{\"type\": \"diffuse\", \"reflectance\": " + rgb(c) + "}");
+    default:
+        return twosided("{\"type\": \"diffuse\", \"reflectance\": " +
+                        (colours ? mitsuba_vertex_colour_product(rgb(c)) : rgb(c)) + "}");
     }
+}
+
+// Some corner of these triangles has a colour other than white.
+bool vertex_colours_matter(const Scene& scene, const std::vector<std::size_t>& tris) {
+    if (scene.colors.empty()) return false;
+    for (std::size_t t : tris)
+        for (int j = 0; j < 3; ++j)
+            if (scene.colors[3 * t + j] != glm::vec4(1)) return true;
+    return false;
 }
 
 }  // namespace
 
 MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, const std::string& source) {
     if (scene.triangle_count() == 0) throw Error("the scene has no triangles");
-    if (!scene.colors.empty()) throw Error("vertex colours, which the exported OBJ meshes cannot carry");
     // Mitsuba is single precision too: the scene is moved so that the camera
     // sits at the origin (in double, then rounded once), which takes nothing
     // from a scene near the origin and keeps one far from it (scenes/hard)
@@ -105,14 +116,42 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
         const bool normals = !scene.normals.empty();
         const bool uvs = !scene.uvs.empty();
         const bool two_sided = emits(m) && (m.flags & CLP_MATF_TWO_SIDED_EMISSION);
+        // Vertex colours multiply the base colour (diffuse albedo, glTF base
+        // colour); a material whose triangles are all white ignores them.
+        std::string colour_file;
+        const bool colours = vertex_colours_matter(scene, tris);
+        if (colours) {
+            if (m.kind != CLP_MAT_DIFFUSE && m.kind != CLP_MAT_GLTF)
+                throw Error("material '" + name + "': vertex colours on a material other than diffuse or glTF");
+            if (emits(m)) throw Error("material '" + name + "': vertex colours on an emitter");
+            if (m.alpha_mode != CLP_ALPHA_OPAQUE)
+                for (std::size_t t : tris)
+                    for (int j = 0; j < 3; ++j)
+                        if (scene.colors[3 * t + j].w != 1)
+                            throw Error("material '" + name + "': vertex alpha with alpha " +
+                                        (m.alpha_mode == CLP_ALPHA_MASK ? "MASK" : "BLEND"));
+            colour_file = stem + "-" + name + ".rgb32f";
+            std::string bytes;
+            for (std::size_t t : tris)
+                for (int j = 0; j < 3; ++j) {
+                    const glm::vec3 c(scene.colors[3 * t + j]);
+                    bytes.append(reinterpret_cast<const char*>(&c), sizeof c);
+                }
+            out.textures.emplace_back(colour_file, std::move(bytes));
+        }
         std::string b;
         if (m.kind == CLP_MAT_GLTF) {
-            b = mitsuba_gltf_bsdf(scene, mi, name, tex);
+            b = mitsuba_gltf_bsdf(scene, mi, name, tex, colours);
             cutouts = cutouts || mitsuba_gltf_has_cutout(m);
             if (b.find("\"principled\"") != std::string::npos)
                 note("'" + name + "': metallic 1 as principled: Smith masking separable (Mitsuba) vs height-correlated (clpath)");
         } else {
-            b = bsdf(m);
+            // Only the glTF material carries textures and alpha (scene files,
+            // glTF and textured MTL make it); anything else would be lost.
+            for (int t : m.texture)
+                if (t != CLP_NO_TEXTURE) throw Error("material '" + name + "': a texture on a material that is not the glTF one");
+            if (m.alpha_mode != CLP_ALPHA_OPAQUE) throw Error("material '" + name + "': alpha on a material that is not the glTF one");
+            b = bsdf(m, colours);
         }
         out.json += "    \"bsdf-" + name + "\": " + b + ",\n";
         if ((m.kind == CLP_MAT_CONDUCTOR || m.kind == CLP_MAT_DIELECTRIC) && double(m.roughness) * m.roughness >= 1e-3)
@@ -158,6 +197,7 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
             shapes += "    \"shape-" + name + (side ? "-back" : "") + "\": {\"type\": \"obj\", \"filename\": " +
                       jsonf::quote(file) + ", \"face_normals\": " + (normals ? "false" : "true") +
                       (uvs ? ", \"flip_tex_coords\": false" : "") +
+                      (colours ? ", \"clpath_vertex_colors\": " + jsonf::quote(colour_file) : "") +
                       ", \"bsdf\": {\"type\": \"ref\", \"id\": \"bsdf-" + name + "\"}" +
                       (emits(m) ? ", \"emitter\": {\"type\": \"area\", \"radiance\": " + mitsuba_gltf_radiance(scene, m, tex) + "}"
                                 : "") +
@@ -225,7 +265,7 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
     if (out.json.size() >= 2 && out.json.compare(out.json.size() - 2, 2, ",\n") == 0)
         out.json.replace(out.json.size() - 2, 2, "\n");
     out.json = head + out.json + "  }\n}\n";
-    out.textures = std::move(tex.files);
+    out.textures.insert(out.textures.end(), tex.files.begin(), tex.files.end());
     return out;
 }
 

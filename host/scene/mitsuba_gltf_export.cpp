@@ -114,14 +114,21 @@ std::string mitsuba_gltf_radiance(const Scene& scene, const Material& m, Mitsuba
     return "{\"type\": \"rgb\", \"value\": " + vec(e) + "}";
 }
 
-std::string mitsuba_gltf_bsdf(const Scene& scene, std::uint32_t mi, const std::string& name, MitsubaTextureFiles& tex) {
+std::string mitsuba_vertex_colour_product(const std::string& texture) {
+    return "{\"type\": \"product\", \"texture_0\": " + texture +
+           ", \"texture_1\": {\"type\": \"mesh_attribute\", \"name\": \"vertex_color\"}}";
+}
+
+std::string mitsuba_gltf_bsdf(const Scene& scene, std::uint32_t mi, const std::string& name, MitsubaTextureFiles& tex,
+                              bool colours) {
     const Material& m = scene.materials.at(mi);
     if (emits(m) && m.alpha_mode != CLP_ALPHA_OPAQUE)
         throw Error("material '" + name + "': an emitter with alpha " + (m.alpha_mode == CLP_ALPHA_MASK ? "MASK" : "BLEND") +
                     " (Mitsuba's area light ignores the BSDF's opacity)");
     const glm::vec3 c = load3(m.albedo);
-    const std::string base = has(m, CLP_TEX_BASE) ? bitmap(scene, m.texture[CLP_TEX_BASE], "rgb", true, vec(c), tex)
-                                                  : "{\"type\": \"rgb\", \"value\": " + vec(c) + "}";
+    std::string base = has(m, CLP_TEX_BASE) ? bitmap(scene, m.texture[CLP_TEX_BASE], "rgb", true, vec(c), tex)
+                                            : "{\"type\": \"rgb\", \"value\": " + vec(c) + "}";
+    if (colours) base = mitsuba_vertex_colour_product(base);
     // roughness x G and metallic x B of the metallic-roughness texture.
     double rough_lo = m.roughness, metal_lo = m.metallic;
     std::string rough = num(m.roughness), metal = num(m.metallic);

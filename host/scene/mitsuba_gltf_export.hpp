@@ -34,10 +34,18 @@ struct MitsubaTextureFiles {
 };
 
 // The BSDF dictionary (JSON) for material `mi` of the scene, which must be
-// CLP_MAT_GLTF. Throws clpath::Error for what Mitsuba cannot be given the same
-// way (wrap modes that differ between the axes, a normal map on mirrored UVs
-// or with stored tangents, normal maps without texture coordinates).
-std::string mitsuba_gltf_bsdf(const Scene& scene, std::uint32_t mi, const std::string& name, MitsubaTextureFiles& tex);
+// CLP_MAT_GLTF; its base colour times the vertex colours when `colours`.
+// Throws clpath::Error for what Mitsuba cannot be given the same way (wrap
+// modes that differ between the axes, a normal map on mirrored UVs or with
+// stored tangents, normal maps without texture coordinates).
+std::string mitsuba_gltf_bsdf(const Scene& scene, std::uint32_t mi, const std::string& name, MitsubaTextureFiles& tex,
+                              bool colours);
+
+// `texture` (JSON) times the mesh's vertex colours: the script's product
+// texture with a mesh_attribute ("vertex_color", which the script adds to
+// the shape from the shape's "clpath_vertex_colors" file: RGB floats per
+// corner, in the OBJ's vertex order).
+std::string mitsuba_vertex_colour_product(const std::string& texture);
 
 // The area light's radiance (JSON): the emission factor, times the emission
 // texture where the material has one.

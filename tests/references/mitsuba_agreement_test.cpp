@@ -22,7 +22,10 @@
 // (image mean 5.2); Scale.ClosedThinGapIsDark checks the exact answer.
 // Controls: the same runs against a reference scaled by 1 + 8 standard
 // errors of the mean must be rejected by the mean test, and renders with a
-// wrong material (rough against smooth, or another roughness) by the per-pixel test.
+// wrong material (rough against smooth, or another roughness) by the per-pixel
+// test, as must textured scenes with one thing undone: v flipped (1 - v), the
+// normal map, the cut-outs, the metallic-roughness textures or the vertex
+// colours left out.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -107,6 +110,8 @@ const std::vector<Entry>& entries() {
          "glTF material with a tangent-space normal map (scale 0.8)", 16},
         {"suzanne", "scenes/suzanne/Suzanne.gltf",
          "a glTF model: base colour and metallic-roughness textures, constant sky", 16},
+        {"textured", "scenes/textured/textured.json",
+         "textured OBJ/MTL (map_Kd, map_d cut-out), vertex colours, Suzanne, directional light", 16},
     };
     return e;
 }
@@ -308,6 +313,15 @@ TEST(MitsubaAgreementControl, RejectsMetalWithoutItsRoughnessTexture) {
     });
     const auto px = test::pixel_agreement(r.runs, r.ref, 0.01, 0.9975, kRounding);
     std::fprintf(stderr, "[ control ] gltf-metals, metallic-roughness textures left out: %s\n", px.describe().c_str());
+    EXPECT_FALSE(px.ok());
+}
+
+TEST(MitsubaAgreementControl, RejectsABlockWithoutItsVertexColours) {
+    const Rendered r = render_entry(entry("textured"), [](Scene& s) {
+        for (auto& c : s.colors) c = glm::vec4(1);
+    });
+    const auto px = test::pixel_agreement(r.runs, r.ref, 0.01, 0.9975, kRounding);
+    std::fprintf(stderr, "[ control ] textured, vertex colours made white: %s\n", px.describe().c_str());
     EXPECT_FALSE(px.ok());
 }
 

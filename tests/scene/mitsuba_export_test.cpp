@@ -199,9 +199,11 @@ TEST(MitsubaExport, RefusesWhatMitsubaWouldModelDifferently) {
     Scene mirrored = n;
     for (auto& uv : mirrored.uvs) uv.x = -uv.x;
     EXPECT_THROW(export_mitsuba_scene(mirrored, "x", "test"), Error);
-    Scene colours = n;
-    colours.colors.assign(colours.vertices.size(), glm::vec4(1));
+    Scene colours = n;  // vertex colours on the lamp (an emitter)
+    colours.colors.assign(colours.vertices.size(), glm::vec4(0.5f, 0.5f, 0.5f, 1));
     EXPECT_THROW(export_mitsuba_scene(colours, "x", "test"), Error);
+    colours.colors.assign(colours.vertices.size(), glm::vec4(1));  // all white: ignored
+    EXPECT_NO_THROW(export_mitsuba_scene(colours, "x", "test"));
     Scene wraps = n;
     wraps.textures.at(0).wrap_t = CLP_WRAP_CLAMP;
     EXPECT_THROW(export_mitsuba_scene(wraps, "x", "test"), Error);
