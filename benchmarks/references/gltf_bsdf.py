@@ -28,6 +28,8 @@ with clpath's): with probability p the specular lobe, half vectors from
 D(h) cos(theta_h) (Walter et al. 2007, eq. 35-36) reflected about h; else
 cosine-weighted directions. p = 0.5 + 0.5 metallic. The pdf is the mixture's.
 One-sided (front only): the export wraps it in twosided, normalmap and mask.
+Also here: the threshold texture (alpha MASK) and the product texture (base
+colour times vertex colours) the export uses.
 """
 import drjit as dr
 import mitsuba as mi

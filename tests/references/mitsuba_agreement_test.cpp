@@ -8,7 +8,7 @@
 //   - the image mean: the ratio clpath / Mitsuba with its standard error (the
 //     runs' spread; the reference's per-pixel variances), t-tested at the
 //     level 1e-3 Sidak-corrected over the entries: a bias of about a percent
-//     (the standard errors in CI are 0.15-0.5 %, tiny-light's 2 %), which no
+//     (the standard errors in CI are 0.02-0.55 %, tiny-light's 2 %), which no
 //     single pixel resolves, shows here.
 // In CI the images are half the references' size, or smaller (Entry::factor;
 // each block of reference pixels averages to the smaller pixel exactly: the
