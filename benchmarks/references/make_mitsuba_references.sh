@@ -31,6 +31,12 @@ scenes=(
   "punctual-lights        benchmarks/references/scenes/punctual-lights.json 64 48"
   "metals                 benchmarks/references/scenes/metals.json         64 48"
   "rough-glass-sky        benchmarks/references/scenes/rough-glass-sky.json 64 48"
+  "gltf-textured          benchmarks/references/scenes/gltf-textured.json  64 48"
+  "gltf-metals            benchmarks/references/scenes/gltf-metals.json    64 48"
+  "gltf-cutout            benchmarks/references/scenes/gltf-cutout.json    64 48"
+  "gltf-normal-map        benchmarks/references/scenes/gltf-normal-map.json 64 48"
+  "suzanne                scenes/suzanne/Suzanne.gltf                      64 48"
+  "textured               scenes/textured/textured.json                    64 48"
 )
 for s in "${scenes[@]}"; do
   read -r name scene w h <<<"$s"

@@ -17,6 +17,17 @@ What the export leaves to this script ("clpath_" keys):
   clpath's smoothstep(cos outer, cos inner, cos theta) is multiplied in as the
   spot's texture, sampled finely (bilinear between texels 1/2048 of the cone
   apart: the falloff is then off by less than 1e-5);
+- textures ("clpath_texture": raw texels the export wrote beside the JSON)
+  become float bitmaps: colour textures decoded from sRGB by Mitsuba's own
+  conversion, one channel picked where clpath reads one (roughness G,
+  metallic B, coverage A), the material's factor multiplied in, a normal
+  map's scale applied to its x and y; the bitmap texture then filters and
+  wraps them as clpath does (raw, bilinear or nearest, repeat/clamp/mirror);
+- the glTF material's plugin, the threshold texture of alpha MASK and the
+  product texture (base colour times vertex colours) come from gltf_bsdf.py;
+- vertex colours ("clpath_vertex_colors": RGB floats per corner, in the OBJ's
+  vertex order) become the shape's "vertex_color" attribute, which a
+  mesh_attribute texture interpolates as clpath does;
 - an environment image is turned to clpath's orientation and its texels are
   repeated 64x64 (Mitsuba interpolates between texel centres, clpath looks the
   nearest texel up; repeated texels confine the difference to seams 1/64 of
@@ -79,6 +90,35 @@ def env_to_world(rotation_deg):
     return mi.ScalarTransform4f(m.tolist())
 
 
+def texture_bitmap(spec, folder):
+    """The texels of one texture use as a float bitmap (see the docstring)."""
+    path = os.path.join(folder, spec["file"])
+    w, h = spec["width"], spec["height"]
+    raw = np.fromfile(path, np.uint8 if spec["format"] == "rgba8" else "<f4")
+    if raw.size != w * h * 4:
+        fail("%s: %d values, expected %dx%dx4" % (path, raw.size, w, h))
+    texels = raw.reshape(h, w, 4)
+    ch = spec["channels"]
+    if ch == "rgb":
+        rgb = np.ascontiguousarray(texels[:, :, :3])
+        if spec["srgb"]:
+            bmp = mi.Bitmap(rgb, mi.Bitmap.PixelFormat.RGB)
+            bmp.set_srgb_gamma(True)
+            val = np.array(bmp.convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False))
+        else:
+            val = rgb.astype(np.float64) / (255.0 if spec["format"] == "rgba8" else 1.0)
+        if "normal_scale" in spec:
+            n = 2 * val - 1
+            n[:, :, :2] *= spec["normal_scale"]
+            val = (n + 1) / 2
+    else:
+        val = texels[:, :, "rgba".index(ch)][:, :, None].astype(np.float64)
+        if spec["format"] == "rgba8":
+            val = val / 255.0
+    val = val * np.array(spec["scale"], dtype=np.float64)
+    return mi.Bitmap(np.ascontiguousarray(val, dtype=np.float32))
+
+
 def convert(d, folder):
     """The exported dictionary as mitsuba.load_dict takes it."""
     if isinstance(d, list):
@@ -97,6 +137,8 @@ def convert(d, folder):
         elif k == "clpath_spot_falloff":
             out["texture"] = {"type": "bitmap", "bitmap": mi.Bitmap(spot_texture(v["inner_degrees"], v["outer_degrees"])),
                               "raw": True, "filter_type": "bilinear", "wrap_mode": "clamp"}
+        elif k == "clpath_texture":
+            out["bitmap"] = texture_bitmap(v, folder)
         elif k == "clpath_env_rotation_degrees":
             out["to_world"] = env_to_world(v)
         elif k == "filename" and d.get("type") == "envmap":
@@ -123,13 +165,27 @@ def main():
     if a.seeds < 2:
         fail("--seeds must be at least 2 (the variance comes from their spread)")
     mi.set_variant(a.variant)
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import gltf_bsdf  # noqa: E402  (needs the variant set)
+    gltf_bsdf.register()
     with open(a.scene) as f:
         js = json.load(f)
     if "scene" not in js or "clpath" not in js:
         fail(a.scene + ": not a file written by clpath export --format mitsuba")
     folder = os.path.dirname(os.path.abspath(a.scene))
     mi.file_resolver().prepend(folder)
+    colours = {k: v.pop("clpath_vertex_colors") for k, v in js["scene"].items()
+               if isinstance(v, dict) and "clpath_vertex_colors" in v}
     scene = mi.load_dict(convert(js["scene"], folder))
+    for shape in scene.shapes():
+        if shape.id() in colours:
+            path = os.path.join(folder, colours.pop(shape.id()))
+            rgb = np.fromfile(path, "<f4")
+            if rgb.size != 3 * shape.vertex_count():
+                fail("%s: %d values for a mesh of %d vertices" % (path, rgb.size, shape.vertex_count()))
+            shape.add_attribute("vertex_color", 3, mi.Float(rgb))
+    if colours:
+        fail("no shape with the id " + ", ".join(colours))
     info = js["clpath"]
     t0 = time.time()
     s1 = s2 = None
@@ -144,10 +200,10 @@ def main():
     mi.Bitmap(mean.astype(np.float32)).write(a.out)
     var_path = os.path.splitext(a.out)[0] + ".var.exr"
     mi.Bitmap((var_runs * a.spp).astype(np.float32)).write(var_path)
-    print("mitsuba_reference.py: %s (%s): %dx%d, %d seeds x %d spp, Mitsuba %s %s, path max_depth %d; "
+    print("mitsuba_reference.py: %s (%s): %dx%d, %d seeds x %d spp, Mitsuba %s %s, %s max_depth %d; "
           "image mean %s; %.0f s; wrote %s, %s"
           % (a.scene, info.get("name"), mean.shape[1], mean.shape[0], K, a.spp, mi.__version__, a.variant,
-             js["scene"]["integrator"]["max_depth"], np.round(mean.mean(axis=(0, 1)), 6).tolist(), time.time() - t0,
+             js["scene"]["integrator"]["type"], js["scene"]["integrator"]["max_depth"], np.round(mean.mean(axis=(0, 1)), 6).tolist(), time.time() - t0,
              a.out, var_path))
 
 

@@ -25,7 +25,7 @@ struct ExportArgs {
     std::string format = "obj";
 };
 
-// --format mitsuba: the meshes first, the scene dictionary that names them last.
+// --format mitsuba: the meshes and texel files first, the scene dictionary that names them last.
 int run_mitsuba_export(const ExportArgs& o, const Scene& scene) {
     namespace fs = std::filesystem;
     const fs::path json = o.out;
@@ -38,7 +38,9 @@ int run_mitsuba_export(const ExportArgs& o, const Scene& scene) {
     std::vector<fs::path> written;
     std::error_code ec;
     try {
-        for (const auto& [name, text] : e.meshes) {
+        auto files = e.meshes;
+        files.insert(files.end(), e.textures.begin(), e.textures.end());
+        for (const auto& [name, text] : files) {
             const fs::path p = json.parent_path() / name;
             check_text_output_path(p.string());
             write_text_file(p.string(), text);
@@ -49,8 +51,9 @@ int run_mitsuba_export(const ExportArgs& o, const Scene& scene) {
         for (const auto& p : written) fs::remove(p, ec);
         throw;
     }
-    std::printf("wrote %s and %zu meshes: Mitsuba 3, %zu triangles, %dx%d, max depth %u\n", json.string().c_str(),
-                e.meshes.size(), scene.triangle_count(), scene.camera.width, scene.camera.height,
+    const std::string textures = e.textures.empty() ? "" : " and " + std::to_string(e.textures.size()) + " texture files";
+    std::printf("wrote %s and %zu meshes%s: Mitsuba 3, %zu triangles, %dx%d, max depth %u\n", json.string().c_str(),
+                e.meshes.size(), textures.c_str(), scene.triangle_count(), scene.camera.width, scene.camera.height,
                 scene.render.max_depth);
     return 0;
 }

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "scene/json_fields.hpp"
+#include "scene/mitsuba_gltf_export.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -35,8 +36,9 @@ std::string safe_name(const std::string& name, std::set<std::string>& taken) {
     return unique;
 }
 
-// The BSDF that scatters as clpath's material does (see the header).
-std::string bsdf(const Material& m) {
+// The BSDF that scatters as clpath's material does (see the header); a
+// diffuse reflectance times the vertex colours when `colours`.
+std::string bsdf(const Material& m, bool colours) {
     const glm::vec3 c = load3(m.albedo);
     const double alpha = double(m.roughness) * m.roughness;
     const bool smooth = alpha < 1e-3;  // CLP_SMOOTH_ALPHA in kernels/materials.cl
@@ -59,8 +61,19 @@ std::string bsdf(const Material& m) {
                    ", \"ext_ior\": 1.0, \"specular_transmittance\": " + rgb(c) + "}";
         return "{\"type\": \"roughdielectric\", \"distribution\": \"ggx\", \"alpha\": " + num(alpha) +
                ", \"int_ior\": " + num(m.ior) + ", \"ext_ior\": 1.0, \"specular_transmittance\": " + rgb(c) + "}";
-    default: return twosided("{\"type\": \"diffuse\", \"reflectance\": " + rgb(c) + "}");
+    default:
+        return twosided("{\"type\": \"diffuse\", \"reflectance\": " +
+                        (colours ? mitsuba_vertex_colour_product(rgb(c)) : rgb(c)) + "}");
     }
+}
+
+// Some corner of these triangles has a colour other than white.
+bool vertex_colours_matter(const Scene& scene, const std::vector<std::size_t>& tris) {
+    if (scene.colors.empty()) return false;
+    for (std::size_t t : tris)
+        for (int j = 0; j < 3; ++j)
+            if (scene.colors[3 * t + j] != glm::vec4(1)) return true;
+    return false;
 }
 
 }  // namespace
@@ -83,8 +96,12 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
     const double back_offset = 1e-6 * glm::length(hi - lo);
 
     MitsubaExport out;
+    MitsubaTextureFiles tex;
+    tex.stem = stem;
     std::set<std::string> taken;
     std::string shapes, notes;
+    bool cutouts = false;
+    auto note = [&](const std::string& s) { notes += std::string(notes.empty() ? "" : ", ") + jsonf::quote(s); };
     for (std::uint32_t mi = 0; mi < scene.materials.size(); ++mi) {
         std::vector<std::size_t> tris;
         for (std::size_t t = 0; t < scene.triangle_count(); ++t)
@@ -92,15 +109,53 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
         if (tris.empty()) continue;
         const Material& m = scene.materials[mi];
         const std::string name = safe_name(mi < scene.material_names.size() ? scene.material_names[mi] : "", taken);
+        if (mitsuba_gltf_invisible(m)) {
+            note("'" + name + "': alpha MASK with a constant coverage below the cutoff: never hit, left out");
+            continue;
+        }
         const bool normals = !scene.normals.empty();
+        const bool uvs = !scene.uvs.empty();
         const bool two_sided = emits(m) && (m.flags & CLP_MATF_TWO_SIDED_EMISSION);
-        out.json += "    \"bsdf-" + name + "\": " + bsdf(m) + ",\n";
-        if (m.kind == CLP_MAT_CONDUCTOR && double(m.roughness) * m.roughness >= 1e-3)
-            notes += std::string(notes.empty() ? "" : ", ") +
-                     jsonf::quote("'" + name + "': Smith masking separable (Mitsuba) vs height-correlated (clpath)");
-        if (m.kind == CLP_MAT_DIELECTRIC && double(m.roughness) * m.roughness >= 1e-3)
-            notes += std::string(notes.empty() ? "" : ", ") +
-                     jsonf::quote("'" + name + "': Smith masking separable (Mitsuba) vs height-correlated (clpath)");
+        // Vertex colours multiply the base colour (diffuse albedo, glTF base
+        // colour); a material whose triangles are all white ignores them.
+        std::string colour_file;
+        const bool colours = vertex_colours_matter(scene, tris);
+        if (colours) {
+            if (m.kind != CLP_MAT_DIFFUSE && m.kind != CLP_MAT_GLTF)
+                throw Error("material '" + name + "': vertex colours on a material other than diffuse or glTF");
+            if (emits(m)) throw Error("material '" + name + "': vertex colours on an emitter");
+            if (m.alpha_mode != CLP_ALPHA_OPAQUE)
+                for (std::size_t t : tris)
+                    for (int j = 0; j < 3; ++j)
+                        if (scene.colors[3 * t + j].w != 1)
+                            throw Error("material '" + name + "': vertex alpha with alpha " +
+                                        (m.alpha_mode == CLP_ALPHA_MASK ? "MASK" : "BLEND"));
+            colour_file = stem + "-" + name + ".rgb32f";
+            std::string bytes;
+            for (std::size_t t : tris)
+                for (int j = 0; j < 3; ++j) {
+                    const glm::vec3 c(scene.colors[3 * t + j]);
+                    bytes.append(reinterpret_cast<const char*>(&c), sizeof c);
+                }
+            out.textures.emplace_back(colour_file, std::move(bytes));
+        }
+        std::string b;
+        if (m.kind == CLP_MAT_GLTF) {
+            b = mitsuba_gltf_bsdf(scene, mi, name, tex, colours);
+            cutouts = cutouts || mitsuba_gltf_has_cutout(m);
+            if (b.find("\"principled\"") != std::string::npos)
+                note("'" + name + "': metallic 1 as principled: Smith masking separable (Mitsuba) vs height-correlated (clpath)");
+        } else {
+            // Only the glTF material carries textures and alpha (scene files,
+            // glTF and textured MTL make it); anything else would be lost.
+            for (int t : m.texture)
+                if (t != CLP_NO_TEXTURE) throw Error("material '" + name + "': a texture on a material that is not the glTF one");
+            if (m.alpha_mode != CLP_ALPHA_OPAQUE) throw Error("material '" + name + "': alpha on a material that is not the glTF one");
+            b = bsdf(m, colours);
+        }
+        out.json += "    \"bsdf-" + name + "\": " + b + ",\n";
+        if ((m.kind == CLP_MAT_CONDUCTOR || m.kind == CLP_MAT_DIELECTRIC) && double(m.roughness) * m.roughness >= 1e-3)
+            note("'" + name + "': Smith masking separable (Mitsuba) vs height-correlated (clpath)");
         for (int side = 0; side < (two_sided ? 2 : 1); ++side) {
             const std::string file = stem + "-" + name + (side ? "-back" : "") + ".obj";
             std::string obj = "# clpath export of '" + scene.name + "' from " + source + ", material '" + name + "'" +
@@ -119,26 +174,32 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
                         for (auto& q : p) q -= n / len * back_offset;
                 }
                 for (int j = 0; j < 3; ++j) obj += "v " + num(p[j].x) + " " + num(p[j].y) + " " + num(p[j].z) + "\n";
-                if (normals) {
-                    const int order[3] = {0, side ? 2 : 1, side ? 1 : 2};
+                const int order[3] = {0, side ? 2 : 1, side ? 1 : 2};
+                if (normals)
                     for (int j : order) {
                         glm::vec3 sn = scene.normals[3 * t + j];
                         if (side) sn = -sn;
                         obj += "vn " + num(sn.x) + " " + num(sn.y) + " " + num(sn.z) + "\n";
                     }
-                    faces += "f " + std::to_string(k + 1) + "//" + std::to_string(k + 1) + " " + std::to_string(k + 2) +
-                             "//" + std::to_string(k + 2) + " " + std::to_string(k + 3) + "//" +
-                             std::to_string(k + 3) + "\n";
-                } else {
-                    faces += "f " + std::to_string(k + 1) + " " + std::to_string(k + 2) + " " + std::to_string(k + 3) + "\n";
+                // clpath's v, row 0 of the image at v = 0 (glTF's), is
+                // Mitsuba's with flip_tex_coords off.
+                if (uvs)
+                    for (int j : order) obj += "vt " + num(scene.uvs[3 * t + j].x) + " " + num(scene.uvs[3 * t + j].y) + "\n";
+                faces += "f";
+                for (int j = 1; j <= 3; ++j) {
+                    const std::string i = std::to_string(k + j);
+                    faces += " " + i + (uvs ? "/" + i : std::string(normals ? "/" : "")) + (normals ? "/" + i : "");
                 }
+                faces += "\n";
                 k += 3;
             }
             out.meshes.emplace_back(file, obj + faces);
             shapes += "    \"shape-" + name + (side ? "-back" : "") + "\": {\"type\": \"obj\", \"filename\": " +
                       jsonf::quote(file) + ", \"face_normals\": " + (normals ? "false" : "true") +
+                      (uvs ? ", \"flip_tex_coords\": false" : "") +
+                      (colours ? ", \"clpath_vertex_colors\": " + jsonf::quote(colour_file) : "") +
                       ", \"bsdf\": {\"type\": \"ref\", \"id\": \"bsdf-" + name + "\"}" +
-                      (emits(m) ? ", \"emitter\": {\"type\": \"area\", \"radiance\": " + rgb(load3(m.emission)) + "}"
+                      (emits(m) ? ", \"emitter\": {\"type\": \"area\", \"radiance\": " + mitsuba_gltf_radiance(scene, m, tex) + "}"
                                 : "") +
                       "},\n";
         }
@@ -191,7 +252,7 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
         ", \"width\": " + std::to_string(c.width) + ", \"height\": " + std::to_string(c.height) +
         ", \"spp\": " + std::to_string(r.spp) + ", \"max_depth\": " + std::to_string(r.max_depth) +
         ", \"shift\": " + jpos(-shift) + ", \"notes\": [" + notes + "]},\n  \"scene\": {\n    \"type\": \"scene\",\n" +
-        "    \"integrator\": {\"type\": \"path\", \"max_depth\": " + std::to_string(r.max_depth + 1) +
+        "    \"integrator\": {\"type\": \"" + (cutouts ? "volpath" : "path") + "\", \"max_depth\": " + std::to_string(r.max_depth + 1) +
         ", \"hide_emitters\": false},\n" +
         "    \"sensor\": {\"type\": \"perspective\", \"fov\": " + num(c.vfov_degrees) +
         ", \"fov_axis\": \"y\", \"near_clip\": " + num(1e-6 * diag) + ", \"far_clip\": " + num(1e3 * diag) +
@@ -204,6 +265,7 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
     if (out.json.size() >= 2 && out.json.compare(out.json.size() - 2, 2, ",\n") == 0)
         out.json.replace(out.json.size() - 2, 2, "\n");
     out.json = head + out.json + "  }\n}\n";
+    out.textures.insert(out.textures.end(), tex.files.begin(), tex.files.end());
     return out;
 }
 

@@ -17,6 +17,14 @@
 //   point, directional -> point, directional
 //   spot         -> spot with a falloff texture (clpath's smoothstep in cos)
 //   environment  -> constant, or envmap rotated to clpath's orientation
+//   glTF material, textures -> scene/mitsuba_gltf_export.hpp; texture
+//                   coordinates go into the OBJ files (flip_tex_coords off);
+//                   with alpha cut-outs the integrator is volpath (its shadow
+//                   rays pass masked surfaces; path's stop at them)
+//   vertex colours -> a file of RGB floats per corner beside the mesh, which
+//                   the script adds to the shape as "vertex_color"; the
+//                   diffuse albedo or glTF base colour is multiplied by it
+//                   (other kinds, emitters and vertex alpha are refused)
 // Markers the script turns into Mitsuba objects start with "clpath_".
 #include <string>
 #include <utility>
@@ -28,7 +36,8 @@ namespace clpath {
 
 struct MitsubaExport {
     std::string json;                                        // the scene dictionary
-    std::vector<std::pair<std::string, std::string>> meshes;  // file name (beside the JSON), OBJ text
+    std::vector<std::pair<std::string, std::string>> meshes;    // file name (beside the JSON), OBJ text
+    std::vector<std::pair<std::string, std::string>> textures;  // file name (beside the JSON), raw texels or colours
 };
 
 // stem: the shared file name without folder or extension; the meshes are

@@ -124,6 +124,92 @@ TEST(MitsubaExport, EveryLightKindAndRoughGlass) {
     EXPECT_EQ(metals["shape-chalk"]["face_normals"], false);  // shading normals travel as vn
 }
 
+// The entry whose key starts with `prefix` and holds `part` (a glTF
+// material's name carries its file's path as the scene named it).
+const json& entry(const json& scene, const std::string& prefix, const std::string& part) {
+    for (const auto& [key, value] : scene.items())
+        if (key.rfind(prefix, 0) == 0 && key.find(part) != std::string::npos) return value;
+    throw std::runtime_error("no " + prefix + "..." + part + "...");
+}
+
+// The glTF material: the plugin, or principled where metallic is 1
+// everywhere; textures as raw texels with their channel, factor, sRGB flag,
+// filter and wrap mode; wrappers for normal maps and cut-outs.
+TEST(MitsubaExport, GltfMaterialsAndTextures) {
+    const Scene t = load_scene(repo_file("benchmarks/references/scenes/gltf-textured.json"));
+    const MitsubaExport et = export_mitsuba_scene(t, "t", "test");
+    const json tex = parse(et).doc["scene"];
+    const json& floor = entry(tex, "bsdf-", "checker-floor")["bsdf"];
+    EXPECT_EQ(floor["type"], "gltf_metallic_roughness");
+    EXPECT_EQ(floor["base_color"]["type"], "bitmap");
+    EXPECT_EQ(floor["base_color"]["filter_type"], "bilinear");
+    EXPECT_EQ(floor["base_color"]["wrap_mode"], "repeat");
+    EXPECT_EQ(floor["base_color"]["clpath_texture"]["srgb"], true);
+    EXPECT_EQ(floor["base_color"]["clpath_texture"]["channels"], "rgb");
+    EXPECT_EQ(entry(tex, "bsdf-", "ramp-clamp")["bsdf"]["base_color"]["wrap_mode"], "clamp");
+    EXPECT_EQ(entry(tex, "bsdf-", "checker-mirror")["bsdf"]["base_color"]["wrap_mode"], "mirror");
+    EXPECT_EQ(entry(tex, "shape-", "checker-floor")["flip_tex_coords"], false);
+    // One texel file per texture, however many uses (the base colour is also
+    // the coverage where a material has alpha), 16x16 RGBA8.
+    std::map<std::string, std::size_t> sizes;
+    for (const auto& [name, bytes] : et.textures) sizes[name] = bytes.size();
+    EXPECT_EQ(sizes.size(), t.textures.size());
+    EXPECT_EQ(sizes.at(floor["base_color"]["clpath_texture"]["file"].get<std::string>()), 16u * 16u * 4u);
+    // Texture coordinates go out as clpath has them (v down; Mitsuba's flip off).
+    for (const auto& [name, text] : et.meshes) {
+        if (name.find("checker-floor") == std::string::npos) continue;
+        EXPECT_NE(text.find("\nvt 0 0\n"), std::string::npos) << text;
+        EXPECT_NE(text.find("\nvt 3 3\n"), std::string::npos) << text;
+        EXPECT_NE(text.find("\nf 1/1/1 2/2/2 3/3/3\n"), std::string::npos) << text;
+    }
+
+    const Scene m = load_scene(repo_file("benchmarks/references/scenes/gltf-metals.json"));
+    const json metals = parse(export_mitsuba_scene(m, "m", "test")).doc["scene"];
+    const json& gold = entry(metals, "bsdf-", "gold-stripes")["bsdf"];
+    EXPECT_EQ(gold["type"], "principled");
+    EXPECT_EQ(gold["roughness"]["clpath_texture"]["channels"], "g");
+    const json& ramp = entry(metals, "bsdf-", "metal-ramp")["bsdf"];
+    EXPECT_EQ(ramp["type"], "gltf_metallic_roughness");
+    EXPECT_EQ(ramp["metallic"]["clpath_texture"]["channels"], "b");
+    EXPECT_EQ(ramp["metallic"]["clpath_texture"]["srgb"], false);
+    EXPECT_EQ(metals["integrator"]["type"], "path");
+
+    const Scene c = load_scene(repo_file("benchmarks/references/scenes/gltf-cutout.json"));
+    const json cut = parse(export_mitsuba_scene(c, "c", "test")).doc["scene"];
+    const json& sheet = entry(cut, "bsdf-", "holes");
+    EXPECT_EQ(sheet["type"], "mask");
+    EXPECT_EQ(sheet["opacity"]["type"], "threshold");
+    EXPECT_EQ(sheet["opacity"]["cutoff"].get<double>(), 0.5);
+    EXPECT_EQ(sheet["opacity"]["texture"]["clpath_texture"]["channels"], "a");
+    EXPECT_EQ(cut["integrator"]["type"], "volpath");  // its shadow rays pass the holes
+
+    const Scene n = load_scene(repo_file("benchmarks/references/scenes/gltf-normal-map.json"));
+    const json nm = parse(export_mitsuba_scene(n, "n", "test")).doc["scene"];
+    const json& bumpy = entry(nm, "bsdf-", "bumps");
+    EXPECT_EQ(bumpy["type"], "twosided");
+    EXPECT_EQ(bumpy["bsdf_0_front"]["type"], "normalmap");
+    EXPECT_NEAR(bumpy["bsdf_0_front"]["normalmap"]["clpath_texture"]["normal_scale"].get<double>(), 0.8, 1e-6);
+    EXPECT_NEAR(bumpy["bsdf_1_back"]["normalmap"]["clpath_texture"]["normal_scale"].get<double>(), -0.8, 1e-6);
+    EXPECT_EQ(bumpy["bsdf_0_front"]["bsdf"]["type"], "gltf_metallic_roughness");
+}
+
+// What Mitsuba would be given differently is refused, naming the material.
+TEST(MitsubaExport, RefusesWhatMitsubaWouldModelDifferently) {
+    const Scene n = load_scene(repo_file("benchmarks/references/scenes/gltf-normal-map.json"));
+    Scene mirrored = n;
+    for (auto& uv : mirrored.uvs) uv.x = -uv.x;
+    EXPECT_THROW(export_mitsuba_scene(mirrored, "x", "test"), Error);
+    Scene colours = n;  // vertex colours on the lamp (an emitter)
+    colours.colors.assign(colours.vertices.size(), glm::vec4(0.5f, 0.5f, 0.5f, 1));
+    EXPECT_THROW(export_mitsuba_scene(colours, "x", "test"), Error);
+    colours.colors.assign(colours.vertices.size(), glm::vec4(1));  // all white: ignored
+    EXPECT_NO_THROW(export_mitsuba_scene(colours, "x", "test"));
+    Scene wraps = n;
+    wraps.textures.at(0).wrap_t = CLP_WRAP_CLAMP;
+    EXPECT_THROW(export_mitsuba_scene(wraps, "x", "test"), Error);
+    EXPECT_NO_THROW(export_mitsuba_scene(n, "x", "test"));
+}
+
 TEST(MitsubaExport, RefusesAnEmptyScene) {
     Scene s;
     EXPECT_THROW(export_mitsuba_scene(s, "x", "test"), Error);
