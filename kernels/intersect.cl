@@ -185,13 +185,33 @@ inline float4 intersect_box4(const RayPre* r, float4 lo_x, float4 hi_x, float4 l
     return select((float4)(INFINITY), tnear, tnear <= tfar);
 }
 
-/* Hit point from barycentrics, with a bound on its rounding error
- * (PBR 4th ed., 6.8.5: gamma(7) for the weighted sum; widened to gamma(10) for
- * OpenCL's division, which may be off by 2.5 ulp). */
+/* Hit point from barycentrics, with a bound on its distance from the exact
+ * point v0 + b1 (v1 - v0) + b2 (v2 - v0), which lies in the triangle's plane
+ * for any b1, b2 (so the barycentrics' own rounding only slides it within the
+ * plane). pbrt's form b0 v0 + b1 v1 + b2 v2 with its bound gamma(7)
+ * sum |b_i v_i| (PBR 4th ed., 6.8.5) is some ten ulps of |p| on every axis:
+ * 0.6 units at 10^6, and bounce rays that started that far off the surface
+ * saw a room shrunk by it, its darker corners under-sampled (the image came
+ * out 0.4 % brighter at 10^6, 1.7 % at 4 10^6; docs/robustness.md). Here the
+ * small part b1 e1 + b2 e2 is bounded relative to the triangle's extent
+ * (gamma(3) for the edge difference, the product and the sum; gamma(6) also
+ * covers the bound's own roundings), and the rounding of the final addition
+ * to v0 is not bounded but computed exactly by TwoSum (Knuth, TAOCP vol. 2,
+ * 4.2.2; exact for correctly rounded addition, which OpenCL guarantees, and
+ * without contraction). On an axis-aligned face both vanish along its
+ * normal, and the point is exactly in the plane; elsewhere the bound is at
+ * most half an ulp of |p| more than the triangle's own rounding. */
 inline float3 hit_point(float3 v0, float3 v1, float3 v2, float b1, float b2, float3* err) {
-    float b0 = 1.0f - b1 - b2;
-    float3 p = b0 * v0 + b1 * v1 + b2 * v2;
-    *err = CLP_GAMMA(10) * (fabs(b0 * v0) + fabs(b1 * v1) + fabs(b2 * v2));
+#pragma OPENCL FP_CONTRACT OFF
+    float3 e1 = v1 - v0, e2 = v2 - v0;
+    float3 b1e1 = b1 * e1, b2e2 = b2 * e2;
+    float3 s = b1e1 + b2e2;
+    float3 p = v0 + s;
+    float3 sv = p - s;
+    float3 rounding = (v0 - sv) + (s - (p - sv)); /* exactly (v0 + s) - p */
+    /* (1 + gamma(4)) |rounding|, itself rounded, is still at least (1 + 2u)
+     * |rounding|, and so is the first term: their float sum is an upper bound. */
+    *err = CLP_GAMMA(6) * (fabs(b1e1) + fabs(b2e2)) + (1.0f + CLP_GAMMA(4)) * fabs(rounding);
     return p;
 }
 

@@ -21,7 +21,7 @@ struct Ray {
 };
 
 // Moller & Trumbore (1997), edges included so a ray through a shared edge hits.
-bool hit_triangle(const Ray& r, const TriVerts& tv, double tmax, double* t_out) {
+bool hit_triangle(const Ray& r, const TriVerts& tv, double tmax, bool at_origin, double* t_out) {
     const D3 v0 = load(tv.v0), e1 = sub(load(tv.v1), v0), e2 = sub(load(tv.v2), v0);
     const D3 p = cross(r.d, e2);
     const double det = dot(e1, p);
@@ -34,7 +34,7 @@ bool hit_triangle(const Ray& r, const TriVerts& tv, double tmax, double* t_out) 
     const double v = dot(r.d, q) * inv;
     if (v < 0 || u + v > 1) return false;
     const double t = dot(e2, q) * inv;
-    if (!(t > 0 && t < tmax)) return false;
+    if (!((at_origin ? t >= 0 : t > 0) && t < tmax)) return false;
     *t_out = t;
     return true;
 }
@@ -60,7 +60,7 @@ double hit_box(const Ray& r, const float* lo, const float* hi, double tmax) {
 
 // Depth-first over both children; any_hit stops at the first hit.
 template <bool AnyHit>
-CpuHit walk(const Bvh& bvh, const BatchRay& br) {
+CpuHit walk(const Bvh& bvh, const BatchRay& br, bool at_origin) {
     const Ray r{load(br.o), load(br.d), double(br.tmax)};
     CpuHit best;
     best.t = r.tmax;
@@ -80,7 +80,7 @@ CpuHit walk(const Bvh& bvh, const BatchRay& br) {
             }
             for (std::uint32_t i = std::uint32_t(~child); i < std::uint32_t(~child) + count; ++i) {
                 double t;
-                if (hit_triangle(r, bvh.triangles[i], best.t, &t)) {
+                if (hit_triangle(r, bvh.triangles[i], best.t, at_origin, &t)) {
                     best.t = t;
                     best.prim = bvh.triangles[i].prim;
                     if (AnyHit) return best;
@@ -93,7 +93,7 @@ CpuHit walk(const Bvh& bvh, const BatchRay& br) {
 
 }  // namespace
 
-CpuHit cpu_closest_hit(const Bvh& bvh, const BatchRay& ray) { return walk<false>(bvh, ray); }
-std::int64_t cpu_any_hit(const Bvh& bvh, const BatchRay& ray) { return walk<true>(bvh, ray).prim; }
+CpuHit cpu_closest_hit(const Bvh& bvh, const BatchRay& ray, bool at_origin) { return walk<false>(bvh, ray, at_origin); }
+std::int64_t cpu_any_hit(const Bvh& bvh, const BatchRay& ray) { return walk<true>(bvh, ray, false).prim; }
 
 }  // namespace clpath

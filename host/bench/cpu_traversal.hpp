@@ -16,8 +16,9 @@ struct CpuHit {
     std::int64_t prim = -1;  // the scene's triangle index (TriVerts::prim); -1: a miss
 };
 
-// Closest hit in (0, ray.tmax) over a BVH in the tree layout (build_bvh).
-CpuHit cpu_closest_hit(const Bvh& bvh, const BatchRay& ray);
+// Closest hit in (0, ray.tmax) over a BVH in the tree layout (build_bvh);
+// with at_origin, in [0, ray.tmax): a triangle through the origin counts too.
+CpuHit cpu_closest_hit(const Bvh& bvh, const BatchRay& ray, bool at_origin = false);
 // Any hit in (0, ray.tmax): the occluding triangle's index, or -1.
 std::int64_t cpu_any_hit(const Bvh& bvh, const BatchRay& ray);
 

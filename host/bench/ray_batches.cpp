@@ -96,8 +96,11 @@ BatchAgreement check_any(const Bvh& reference, const std::vector<BatchRay>& rays
             ++a.identical;
             continue;
         }
-        // Where the two differ, the exact closest occluder tells whether it sits at the origin.
-        const CpuHit c = cpu_closest_hit(reference, r);
+        // Where the two differ, the exact closest occluder tells whether it sits
+        // at the origin. That includes t = 0: a secondary ray can start exactly
+        // on the surface it leaves (kernels/intersect.cl hit_point), which
+        // clpath's t bound rejects and Embree, from tnear 0, reports.
+        const CpuHit c = cpu_closest_hit(reference, r, true);
         const double scale = std::max({std::abs(r.o[0]), std::abs(r.o[1]), std::abs(r.o[2])});
         if (c.prim >= 0 && c.t * std::sqrt(double(r.d[0]) * r.d[0] + double(r.d[1]) * r.d[1] + double(r.d[2]) * r.d[2]) <=
                                kNearOrigin * scale) {
