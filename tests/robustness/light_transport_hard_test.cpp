@@ -213,3 +213,53 @@ TEST(LightTransportHard, CameraInsideClosedObjectSeesNothing) {
     s.camera.width = s.camera.height = 16;
     expect_dark(s, 64);
 }
+
+namespace {
+// A closed room of axis-aligned boxes (scenes/hard/far-from-origin.json at
+// the origin) lit by a two-sided lamp of radiance 12 under its ceiling, the
+// camera inside, a constant sky of radiance `sky` outside.
+Scene closed_room(float sky) {
+    Scene s;
+    s.name = "closed-room";
+    const auto white = s.add_material("white", diffuse(glm::vec3(0.75f)));
+    s.add_triangles(transformed(make_box(), shape_transform({0, 64, 0}, {0, 0, 0}, glm::vec3(128))), white);
+    s.add_triangles(transformed(make_box(), shape_transform({-24, 24, 48}, {0, 0, 0}, {32, 48, 32})),
+                    s.add_material("red", diffuse(glm::vec3(0.7f, 0.1f, 0.1f))));
+    s.add_triangles(transformed(make_box(), shape_transform({48, 16, 48}, {0, 0, 0}, glm::vec3(32))), white);
+    s.add_triangles(quad({0, 120, 0}, {0, 0, 0}, {48, 1, 48}),
+                    s.add_material("lamp", emitter(glm::vec3(12.0f), true)));
+    s.environment.color = glm::vec3(sky);
+    s.camera.eye = {0, 64, -60};
+    s.camera.target = {0, 40, 0};
+    s.camera.vfov_degrees = 70;
+    s.camera.width = s.camera.height = 32;
+    return s;
+}
+}  // namespace
+
+// No sky light enters a closed room, so a sky outside must leave the image's
+// expectation unchanged, only noisier. With the sky in the light table,
+// next-event estimation picks the lamp with probability 0.26 instead of 1
+// (picks of the sky end in a blocked shadow ray), and MIS weighs the lamp's
+// BSDF-sampled hits by that probability: a selection probability used
+// inconsistently between the two would make the room darker or brighter.
+// The whole image's mean is z-tested per channel (one 32-pixel block, false
+// failure rate 1e-6 in all). Its standard error is about 0.12 % of the mean,
+// so a shift of 0.75 % fails (z about 6). Control: a lamp 1 % dimmer is
+// rejected. With one light and the same seeds the image is linear in the
+// lamp's emission, so the control scales the images instead of re-rendering.
+TEST(LightTransportHard, SkyOutsideClosedRoomChangesNothing) {
+    RenderSettings st;
+    st.max_depth = 6;
+    std::uint64_t nonfinite = 0;
+    const auto dark = test::render_runs(closed_room(0.0f), st, 512, 4, 30, &nonfinite);
+    const auto sky = test::render_runs(closed_room(1.0f), st, 512, 4, 40, &nonfinite);
+    EXPECT_EQ(nonfinite, 0u);
+    const auto r = test::image_agreement(dark, sky, 32, 1e-6);
+    EXPECT_TRUE(r.ok()) << r.describe();
+    auto dimmer = dark;
+    for (auto& img : dimmer)
+        for (float& v : img.rgb) v *= 0.99f;
+    const auto c = test::image_agreement(dimmer, sky, 32, 1e-6);
+    EXPECT_FALSE(c.ok()) << "a 1 % dimmer lamp passed: " << c.describe();
+}
