@@ -344,9 +344,9 @@ GltfModel read_gltf(const std::string& bytes, const std::string& file, const Loa
         while (!what.empty() && std::isspace(static_cast<unsigned char>(what.back()))) what.pop_back();
         throw Error(file + ": not a valid glTF 2.0 file: " + (what.empty() ? "unknown error" : what));
     }
-    gltf::refuse_unsupported(model.asset.version, model.extensionsRequired, file);
     const Source src{model, file, options};
     GltfModel out;
+    out.warnings = gltf::refuse_unsupported(model.asset.version, model.extensionsRequired, file);
 
     gltf::read_materials(src, out);
 

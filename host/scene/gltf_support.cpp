@@ -36,18 +36,37 @@ const std::vector<std::string>& supported_extensions() {
     return k;
 }
 
-void refuse_unsupported(const std::string& version, const std::vector<std::string>& required, const std::string& file) {
+const std::vector<std::string>& look_only_extensions() {
+    static const std::vector<std::string> k = {
+        "KHR_technique_webgl", "KHR_materials_pbrSpecularGlossiness", "KHR_materials_unlit", "KHR_texture_transform",
+        "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular", "KHR_materials_transmission",
+        "KHR_materials_volume", "KHR_materials_iridescence", "KHR_materials_anisotropy", "KHR_materials_dispersion",
+        "KHR_materials_variants"};
+    return k;
+}
+
+std::vector<std::string> refuse_unsupported(const std::string& version, const std::vector<std::string>& required,
+                                            const std::string& file) {
     if (is_version_1(version)) refuse_version(version, file);
+    auto listed = [](const std::vector<std::string>& list, const std::string& name) {
+        for (const auto& s : list)
+            if (s == name) return true;
+        return false;
+    };
+    std::vector<std::string> warnings;
     std::string missing;
     std::size_t count = 0;
     for (const auto& name : required) {
-        bool known = false;
-        for (const auto& s : supported_extensions()) known = known || s == name;
-        if (known) continue;
+        if (listed(supported_extensions(), name)) continue;
+        if (listed(look_only_extensions(), name)) {
+            warnings.push_back(file + ": extensionsRequired: " + name +
+                               " is not implemented; rendered with the core glTF 2.0 materials, so the look may differ");
+            continue;
+        }
         missing += (missing.empty() ? "" : ", ") + name;
         ++count;
     }
-    if (missing.empty()) return;
+    if (missing.empty()) return warnings;
     std::string have;
     for (const auto& s : supported_extensions()) have += (have.empty() ? "" : ", ") + s;
     throw Error(file + ": extensionsRequired: " + missing + (count == 1 ? " is" : " are") +
@@ -83,7 +102,7 @@ void refuse_unsupported(const std::string& bytes, const std::string& file) {
     if (auto r = doc.find("extensionsRequired"); r != doc.end() && r->is_array())
         for (const auto& e : *r)
             if (e.is_string()) required.push_back(e.get<std::string>());
-    refuse_unsupported(version, required, file);
+    (void)refuse_unsupported(version, required, file);
 }
 
 std::string incomplete_triangle_warning(const std::string& file, const std::string& path, std::size_t corners) {

@@ -14,11 +14,19 @@ namespace clpath::gltf {
 // The extensions clpath implements (docs/scene-format.md, "glTF 2.0").
 const std::vector<std::string>& supported_extensions();
 
+// Required extensions clpath does not implement but can render without: they
+// only change how materials look, and every material they touch keeps its
+// core glTF 2.0 values (a shader technique, specular-glossiness, unlit,
+// texture transforms, the PBR layers beyond the core model).
+const std::vector<std::string>& look_only_extensions();
+
 // After tinygltf has read the document: throws clpath::Error "FILE: glTF 1.0
 // is not supported (glTF 2.0 is)" for asset.version 1.x, or "FILE:
 // extensionsRequired: NAME is not supported ..." for a required extension
-// clpath does not implement.
-void refuse_unsupported(const std::string& version, const std::vector<std::string>& required, const std::string& file);
+// clpath does not implement, unless it is a look-only one: those come back as
+// warnings naming them.
+std::vector<std::string> refuse_unsupported(const std::string& version, const std::vector<std::string>& required,
+                                            const std::string& file);
 
 // When reading failed: looks at the raw file (.gltf JSON or .glb) and throws
 // the message above if the cause is a glTF 1.0 document (by asset.version,

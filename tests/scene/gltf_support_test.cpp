@@ -95,7 +95,17 @@ TEST(GltfSupport, UnsupportedRequiredExtensionsAreNamed) {
     GltfBuilder ok = quad_model();
     ok.doc["extensionsUsed"] = {"KHR_materials_ior", "KHR_draco_mesh_compression"};
     ok.doc["extensionsRequired"] = {"KHR_materials_ior"};
-    EXPECT_EQ(load("ok.gltf", ok.embedded()).triangle_count(), 2u);
+    const Scene loaded = load("ok.gltf", ok.embedded());
+    EXPECT_EQ(loaded.triangle_count(), 2u);
+    EXPECT_TRUE(loaded.warnings.empty());
+    // A required extension that only changes how materials look (as in
+    // assimp's BoxTextured-glTF-techniqueWebGL) loads, with a warning naming it.
+    ok.doc["extensionsRequired"] = {"KHR_materials_ior", "KHR_technique_webgl"};
+    const Scene look = load("ok.gltf", ok.embedded());
+    EXPECT_EQ(look.triangle_count(), 2u);
+    ASSERT_EQ(look.warnings.size(), 1u);
+    EXPECT_TRUE(has(look.warnings[0], "ok.gltf: extensionsRequired: KHR_technique_webgl is not implemented; rendered with"))
+        << look.warnings[0];
 }
 
 TEST(GltfSupport, IncompleteLastTriangleIsDroppedWithAWarning) {
