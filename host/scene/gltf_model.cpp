@@ -183,7 +183,7 @@ std::vector<std::uint32_t> triangle_corners(const Source& src, const tinygltf::P
     case TINYGLTF_MODE_LINE:
     case TINYGLTF_MODE_LINE_LOOP:
     case TINYGLTF_MODE_LINE_STRIP:
-        src.fail(path + ".mode", "points and lines cannot be rendered (clpath renders triangles)");
+        return {};  // skipped, as an OBJ's lines are; read_primitive warns
     default: src.fail(path + ".mode", "unknown primitive mode " + std::to_string(mode));
     }
 }
@@ -219,6 +219,8 @@ GltfPrimitive read_primitive(const Source& src, const tinygltf::Primitive& p, co
     out.material = p.material;
 
     const std::vector<std::uint32_t> corners = triangle_corners(src, p, path, n);
+    if (p.mode >= TINYGLTF_MODE_POINTS && p.mode <= TINYGLTF_MODE_LINE_STRIP)
+        out.warning = gltf::points_and_lines_warning(src.file, path);
     if (p.mode < 0 || p.mode == TINYGLTF_MODE_TRIANGLES) {
         const std::size_t listed = p.indices >= 0 ? src.model.accessors[std::size_t(p.indices)].count : n;
         if (listed % 3) out.warning = gltf::incomplete_triangle_warning(src.file, path, listed);

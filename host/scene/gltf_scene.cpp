@@ -61,7 +61,12 @@ Scene gltf_scene(const std::string& file, const LoadOptions& options) {
     Scene s;
     s.name = std::filesystem::path(file).stem().string();
     s.warnings = model.warnings;
-    if (model.triangle_count() == 0) throw Error(file + ": the file places no triangles (an empty scene)");
+    if (model.triangle_count() == 0) {
+        // What was skipped (points, lines) is why, when anything was.
+        std::string why;
+        for (const auto& w : model.warnings) why += "; " + w;
+        throw Error(file + ": the file places no triangles (an empty scene)" + why);
+    }
     SceneBuilder builder(s, options.max_triangles);
     add_gltf(s, builder, model, glm::mat4(1), file);
     builder.finish();

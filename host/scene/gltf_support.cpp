@@ -111,4 +111,8 @@ std::string incomplete_triangle_warning(const std::string& file, const std::stri
            std::to_string(extra) + (extra == 1 ? " is" : " are") + " dropped";
 }
 
+std::string points_and_lines_warning(const std::string& file, const std::string& path) {
+    return file + ": " + path + ".mode: points and lines cannot be rendered (clpath renders triangles); skipped";
+}
+
 }  // namespace clpath::gltf

@@ -40,4 +40,8 @@ void refuse_unsupported(const std::string& bytes, const std::string& file);
 // dropped, as assimp does (indices out of range stay an error).
 std::string incomplete_triangle_warning(const std::string& file, const std::string& path, std::size_t corners);
 
+// The warning for a point or line primitive: skipped, as an OBJ's points and
+// lines are (clpath renders surfaces); a file with nothing else is refused.
+std::string points_and_lines_warning(const std::string& file, const std::string& path);
+
 }  // namespace clpath::gltf

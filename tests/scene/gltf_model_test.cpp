@@ -126,7 +126,7 @@ TEST(Gltf, StripsFansAndUnindexedPrimitivesBecomeTriangles) {
         EXPECT_GT(glm::cross(s.vertices[3 * t + 1] - s.vertices[3 * t], s.vertices[3 * t + 2] - s.vertices[3 * t]).z, 0) << t;
 }
 
-TEST(Gltf, PointsAndLinesAreRefused) {
+TEST(Gltf, PointsAndLinesAloneAreRefused) {
     for (int mode : {0, 1, 2, 3}) {
         GltfBuilder g = quad_model();
         g.doc["meshes"][0]["primitives"][0]["mode"] = mode;

@@ -135,4 +135,23 @@ TEST(GltfSupport, IncompleteLastTriangleIsDroppedWithAWarning) {
     EXPECT_TRUE(has(error("c.gltf", g.embedded()), "c.gltf: meshes[0].primitives[0].indices: index 8 at position 3 is out of range"));
 }
 
+// Points and lines among triangles are skipped with a warning, as an OBJ's
+// are (assimp's IncorrectVertexArrays/Cube.gltf has both); a file of nothing
+// else is refused, naming them.
+TEST(GltfSupport, PointsAndLinesAmongTrianglesAreSkipped) {
+    GltfBuilder g = quad_model();
+    json lines = g.doc["meshes"][0]["primitives"][0];
+    lines["mode"] = 1;
+    g.doc["meshes"][0]["primitives"].push_back(lines);
+    const Scene s = load("m.gltf", g.embedded());
+    EXPECT_EQ(s.triangle_count(), 2u);
+    ASSERT_EQ(s.warnings.size(), 1u);
+    EXPECT_EQ(s.warnings[0], "m.gltf: meshes[0].primitives[1].mode: points and lines cannot be rendered (clpath "
+                             "renders triangles); skipped");
+    g.doc["meshes"][0]["primitives"].erase(0);
+    const std::string e = error("m.gltf", g.embedded());
+    EXPECT_TRUE(has(e, "m.gltf: the file places no triangles (an empty scene); m.gltf: meshes[0].primitives[0].mode: "
+                       "points and lines cannot be rendered")) << e;
+}
+
 }  // namespace
