@@ -64,12 +64,12 @@ struct RenderOptions {
     bool no_partial = false;
 };
 
-// Only an OBJ mesh gets the presentation's ground (docs/scene-format.md,
-// "Bare meshes"); a glTF model is not presented that way.
+// Only a bare mesh (an OBJ, or a glTF model) gets the presentation's ground
+// (docs/scene-format.md, "Bare meshes"); scene files and built-in scenes do not.
 bool is_bare_mesh(const std::string& spec) {
     std::string ext = std::filesystem::path(spec).extension().string();
     for (auto& c : ext) c = char(std::tolower((unsigned char)c));
-    return ext == ".obj";
+    return ext == ".obj" || ext == ".gltf" || ext == ".glb";
 }
 
 int run_render(const RenderOptions& o) {
@@ -241,8 +241,8 @@ Command add_render_command(CLI::App& app) {
                     "shell separator)");
     cmd->add_option("--env", o->env,
                     "Environment override: a colour R,G,B (or one grey value) or an equirectangular .hdr/.exr "
-                    "image; for a bare mesh it replaces the default sky and sun");
-    cmd->add_flag("--no-ground", o->no_ground, "A bare mesh gets no ground plane");
+                    "image; for a bare mesh (.obj, .gltf, .glb) it replaces the default sky and sun");
+    cmd->add_flag("--no-ground", o->no_ground, "A bare mesh (.obj, .gltf, .glb) gets no ground plane");
     cmd->add_option("--out,-o", o->outputs,
                     "Output image, .png (8-bit sRGB), .exr or .pfm (linear float); repeatable "
                     "(default: out/SCENE.png and out/SCENE.exr)");

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/gltf_parts.hpp"
+#include "scene/gltf_support.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -166,7 +167,8 @@ std::vector<std::uint32_t> triangle_corners(const Source& src, const tinygltf::P
     std::vector<std::uint32_t> out;
     switch (mode) {
     case TINYGLTF_MODE_TRIANGLES:
-        if (idx.size() % 3) src.fail(path, std::to_string(idx.size()) + " corners is not a whole number of triangles");
+        // An incomplete last triangle is dropped, as assimp does (read_primitive warns).
+        idx.resize(idx.size() - idx.size() % 3);
         return idx;
     case TINYGLTF_MODE_TRIANGLE_STRIP:
         for (std::size_t i = 0; i + 2 < idx.size(); ++i) {
@@ -181,7 +183,7 @@ std::vector<std::uint32_t> triangle_corners(const Source& src, const tinygltf::P
     case TINYGLTF_MODE_LINE:
     case TINYGLTF_MODE_LINE_LOOP:
     case TINYGLTF_MODE_LINE_STRIP:
-        src.fail(path + ".mode", "points and lines cannot be rendered (clpath renders triangles)");
+        return {};  // skipped, as an OBJ's lines are; read_primitive warns
     default: src.fail(path + ".mode", "unknown primitive mode " + std::to_string(mode));
     }
 }
@@ -217,6 +219,12 @@ GltfPrimitive read_primitive(const Source& src, const tinygltf::Primitive& p, co
     out.material = p.material;
 
     const std::vector<std::uint32_t> corners = triangle_corners(src, p, path, n);
+    if (p.mode >= TINYGLTF_MODE_POINTS && p.mode <= TINYGLTF_MODE_LINE_STRIP)
+        out.warning = gltf::points_and_lines_warning(src.file, path);
+    if (p.mode < 0 || p.mode == TINYGLTF_MODE_TRIANGLES) {
+        const std::size_t listed = p.indices >= 0 ? src.model.accessors[std::size_t(p.indices)].count : n;
+        if (listed % 3) out.warning = gltf::incomplete_triangle_warning(src.file, path, listed);
+    }
     const std::size_t m = corners.size();
     out.vertices.resize(m);
     if (nrm) out.normals.resize(m);
@@ -303,8 +311,22 @@ bool is_gltf_file(const std::string& file) {
     return e == ".gltf" || e == ".glb";
 }
 
+namespace {
+GltfModel read_gltf(const std::string& bytes, const std::string& file, const LoadOptions& options);
+}  // namespace
+
 GltfModel load_gltf(const std::string& file, const LoadOptions& options) {
     const std::string bytes = options.read_file(file);
+    try {
+        return read_gltf(bytes, file, options);
+    } catch (const Error&) {
+        gltf::refuse_unsupported(bytes, file);  // when that is the cause, it is named instead
+        throw;
+    }
+}
+
+namespace {
+GltfModel read_gltf(const std::string& bytes, const std::string& file, const LoadOptions& options) {
     const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
     if (!binary) check_uris(bytes, file, options);
 
@@ -326,6 +348,7 @@ GltfModel load_gltf(const std::string& file, const LoadOptions& options) {
     }
     const Source src{model, file, options};
     GltfModel out;
+    out.warnings = gltf::refuse_unsupported(model.asset.version, model.extensionsRequired, file);
 
     gltf::read_materials(src, out);
 
@@ -358,9 +381,11 @@ GltfModel load_gltf(const std::string& file, const LoadOptions& options) {
                 const std::size_t mi = std::size_t(n.mesh);
                 if (!mesh_read[mi]) {
                     const auto& prims = model.meshes[mi].primitives;
-                    for (std::size_t p = 0; p < prims.size(); ++p)
+                    for (std::size_t p = 0; p < prims.size(); ++p) {
                         out.meshes[mi].push_back(read_primitive(
                             src, prims[p], "meshes[" + std::to_string(mi) + "].primitives[" + std::to_string(p) + "]"));
+                        if (!out.meshes[mi].back().warning.empty()) out.warnings.push_back(out.meshes[mi].back().warning);
+                    }
                     mesh_read[mi] = true;
                 }
                 for (const auto& p : out.meshes[mi]) triangles += p.vertices.size() / 3;
@@ -429,5 +454,7 @@ GltfModel load_gltf(const std::string& file, const LoadOptions& options) {
     if (!warn.empty()) out.warnings.push_back(file + ": " + warn);
     return out;
 }
+
+}  // namespace
 
 }  // namespace clpath

@@ -25,6 +25,7 @@ struct GltfPrimitive {
     std::vector<glm::vec4> tangents;  // empty, or 3 per triangle
     std::vector<glm::vec4> colors;    // COLOR_0 (RGB gets alpha 1): empty, or 3 per triangle
     int material = -1;                // index into GltfModel::materials; -1: the default material
+    std::string warning;              // for GltfModel::warnings: what reading it dropped
 };
 
 // A mesh placed by the node hierarchy.

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "scene/presentation.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -55,35 +56,24 @@ void add_gltf(Scene& scene, SceneBuilder& builder, const GltfModel& model, const
     }
 }
 
-Camera framing_camera(const Scene& s, float side) {
-    glm::vec3 lo(INFINITY), hi(-INFINITY);
-    for (const auto& v : s.vertices) {
-        lo = glm::min(lo, v);
-        hi = glm::max(hi, v);
-    }
-    const glm::vec3 centre = (lo + hi) * 0.5f;
-    const float radius = std::max(0.5f * glm::length(hi - lo), 1e-6f);
-    Camera c;
-    c.vfov_degrees = 40;
-    c.width = 640;
-    c.height = 480;
-    c.target = centre;
-    c.eye = centre + glm::normalize(glm::vec3(0, 0.25f, side)) * (radius / std::sin(glm::radians(18.0f)));
-    return c;
-}
-
 Scene gltf_scene(const std::string& file, const LoadOptions& options) {
     const GltfModel model = load_gltf(file, options);
     Scene s;
     s.name = std::filesystem::path(file).stem().string();
     s.warnings = model.warnings;
-    if (model.triangle_count() == 0) throw Error(file + ": the file places no triangles (an empty scene)");
+    if (model.triangle_count() == 0) {
+        // What was skipped (points, lines) is why, when anything was.
+        std::string why;
+        for (const auto& w : model.warnings) why += "; " + w;
+        throw Error(file + ": the file places no triangles (an empty scene)" + why);
+    }
     SceneBuilder builder(s, options.max_triangles);
     add_gltf(s, builder, model, glm::mat4(1), file);
     builder.finish();
     if (s.triangle_count() == 0) throw Error(file + ": every triangle is degenerate (an empty scene)");
-    if (!s.has_emitter()) s.environment.color = glm::vec3(1);
-    s.camera = model.camera ? *model.camera : framing_camera(s, 1.0f);  // a glTF asset's front faces +z
+    // Framed, grounded and lit as a bare OBJ is, keeping what the file brings.
+    if (model.camera) s.camera = *model.camera;
+    present_model(s, options.presentation, model.camera.has_value());
     return s;
 }
 

@@ -21,13 +21,9 @@ void add_gltf(Scene& scene, SceneBuilder& builder, const GltfModel& model, const
               const std::string& file, bool smooth = true,
               const std::function<std::uint32_t(int)>& material_override = {});
 
-// A bare glTF file as a scene: the file's chosen camera (or one framing the
-// model from +z, the side a glTF asset faces), its lights, and a white environment when
-// nothing in it emits.
+// A bare glTF file as a scene, in the default presentation of a bare mesh
+// (presentation.hpp) for what the file lacks: its chosen camera, or one
+// framing the model; its lights and emitters, or the ground, sky and sun.
 Scene gltf_scene(const std::string& file, const LoadOptions& options = {});
-
-// A camera framing the scene's bounding sphere in a 40 degree view from -z
-// (side -1) or +z (side +1), a little above.
-Camera framing_camera(const Scene& scene, float side = -1.0f);
 
 }  // namespace clpath

@@ -104,21 +104,29 @@ glm::vec3 presentation_view_direction(const Scene& s) {
     return best;
 }
 
-void present_bare_mesh(Scene& s, const PresentationOptions& o) {
+void present_bare_mesh(Scene& s, const PresentationOptions& o) { present_model(s, o, false); }
+
+void present_model(Scene& s, const PresentationOptions& o, bool keep_camera) {
     namespace p = presentation;
-    if (s.triangle_count() == 0) throw Error("internal: present_bare_mesh on an empty scene");
-    bool self_lit = false;
+    if (s.triangle_count() == 0) throw Error("internal: present_model on an empty scene");
+    bool self_lit = !s.lights.empty();
     for (auto m : s.triangle_material) self_lit = self_lit || emits(s.materials[m]);
 
     const Bounds b = bounds_of(s);
-    const glm::vec3 d = presentation_view_direction(s);
     Camera& cam = s.camera;
-    cam.width = 640;
-    cam.height = 480;
-    cam.vfov_degrees = p::kVerticalFov;
-    cam.up = glm::vec3(0, 1, 0);
-    cam.target = b.centre();
-    cam.eye = b.centre() + d * framing_distance(b, d, cam.vfov_degrees, float(cam.width) / float(cam.height));
+    glm::vec3 d;  // towards the camera, for the sun's placement
+    if (keep_camera) {
+        d = cam.eye - cam.target;
+        d = glm::length(glm::vec2(d.x, d.z)) > 0 ? glm::normalize(d) : glm::vec3(0, 0, 1);
+    } else {
+        d = presentation_view_direction(s);
+        cam.width = 640;
+        cam.height = 480;
+        cam.vfov_degrees = p::kVerticalFov;
+        cam.up = glm::vec3(0, 1, 0);
+        cam.target = b.centre();
+        cam.eye = b.centre() + d * framing_distance(b, d, cam.vfov_degrees, float(cam.width) / float(cam.height));
+    }
 
     if (o.ground && (!self_lit || o.environment)) {
         // A square under the model, a hair below its lowest point so that a

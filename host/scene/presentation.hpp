@@ -41,4 +41,11 @@ glm::vec3 presentation_view_direction(const Scene& scene);
 // when asked for) is added: it brings its own lighting.
 void present_bare_mesh(Scene& scene, const PresentationOptions& options);
 
+// The same for a model file that may bring its own camera or lights (a glTF
+// file): with keep_camera its camera stays (the sun is then placed beside
+// that camera's view); punctual lights count like emitting materials, so a
+// model with either gets no ground, sky or sun unless options.environment
+// replaces its lighting.
+void present_model(Scene& scene, const PresentationOptions& options, bool keep_camera);
+
 }  // namespace clpath

@@ -1,6 +1,7 @@
 # Runs one command and checks its exit status and output:
 #   cmake -DCMD="a;b;c" -DEXPECT_FAIL=1 -DEXPECT_OUTPUT=regex -DFORBID_FILE=path -P expect.cmake
-# Optional: -DEXPECT_RC=N (the exact exit status), -DEXPECT_FILE=path (must exist after).
+# Optional: -DEXPECT_RC=N (the exact exit status), -DEXPECT_FILE=path (must exist after),
+# -DREJECT_OUTPUT=regex (must not match the output).
 execute_process(COMMAND ${CMD} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 set(all "${out}${err}")
 message("${all}")
@@ -22,6 +23,9 @@ if(DEFINED EXPECT_FILE AND NOT EXPECT_FILE STREQUAL "" AND NOT EXISTS "${EXPECT_
 endif()
 if(DEFINED EXPECT_OUTPUT AND NOT all MATCHES "${EXPECT_OUTPUT}")
     message(FATAL_ERROR "output does not match '${EXPECT_OUTPUT}'")
+endif()
+if(DEFINED REJECT_OUTPUT AND NOT REJECT_OUTPUT STREQUAL "" AND all MATCHES "${REJECT_OUTPUT}")
+    message(FATAL_ERROR "output matches '${REJECT_OUTPUT}', which it must not")
 endif()
 if(DEFINED FORBID_FILE AND EXISTS "${FORBID_FILE}")
     message(FATAL_ERROR "${FORBID_FILE} was written although the command failed")

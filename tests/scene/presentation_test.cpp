@@ -1,6 +1,7 @@
 // The default presentation of a bare mesh: the view shows the mesh's largest
 // faces, and a rendered bare mesh shows the model, the ground and the model's
-// shadow on it.
+// shadow on it. A bare glTF model gets the same, less what the file brings
+// (its camera, its lights or emitters).
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -8,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "render/settings.hpp"
+#include "scene/gltf_files.hpp"
+#include "scene/gltf_scene.hpp"
 #include "scene/memory_files.hpp"
 #include "scene/presentation.hpp"
 #include "scene/scene_file.hpp"
@@ -31,6 +34,42 @@ const char* kXyPlate = "v -1 0 0\nv 1 0 0\nv 1 1.2 0\nv -1 1.2 0\nf 1 2 3 4\n";
 const char* kCube =
     "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
     "f 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\nf 4 8 7 3\nf 1 2 6 5\n";
+
+// The cube above as a glTF model: unindexed triangles of a terracotta
+// dielectric whose red albedo (0.8) is the OBJ cube's, for the pixel
+// classification below. (Grey, its specular coat brings its mean luminance
+// to within 5 % of the lit ground's, and "stands out" below would not hold.)
+test::GltfBuilder gltf_cube() {
+    const float v[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    const int faces[6][4] = {{1, 4, 3, 2}, {5, 6, 7, 8}, {1, 5, 8, 4}, {2, 3, 7, 6}, {4, 8, 7, 3}, {1, 2, 6, 5}};
+    std::vector<float> pos;
+    for (const auto& f : faces)
+        for (int k : {0, 1, 2, 0, 2, 3}) pos.insert(pos.end(), v[f[k] - 1], v[f[k] - 1] + 3);
+    test::GltfBuilder g;
+    const int p = g.floats(pos, "VEC3", 3);
+    using nlohmann::json;
+    g.doc["materials"] = json::array({json{{"pbrMetallicRoughness",
+                                            {{"baseColorFactor", {0.8, 0.45, 0.3, 1}}, {"metallicFactor", 0}}}}});
+    json prim = {{"attributes", {{"POSITION", p}}}, {"material", 0}};
+    g.doc["meshes"] = json::array({json{{"primitives", json::array({prim})}}});
+    g.doc["nodes"] = json::array({json{{"mesh", 0}}});
+    return g;
+}
+
+Scene bare_gltf(const test::GltfBuilder& g, const PresentationOptions& p = {}, const std::string& camera = "") {
+    test::MemoryFiles files;
+    files.files["m/model.gltf"] = g.embedded();
+    LoadOptions o = files.options();
+    o.presentation = p;
+    o.gltf_camera = camera;
+    return gltf_scene("m/model.gltf", o);
+}
+
+void expect_near(glm::vec3 a, glm::vec3 b, float tol = 1e-5f) {
+    EXPECT_NEAR(a.x, b.x, tol);
+    EXPECT_NEAR(a.y, b.y, tol);
+    EXPECT_NEAR(a.z, b.z, tol);
+}
 
 TEST(Presentation, FlatModelsAreSeenFaceOn) {
     // The direction is chosen from the mesh alone (before the ground is added).
@@ -87,6 +126,80 @@ TEST(Presentation, AddsCameraGroundSkyAndSun) {
     EXPECT_EQ(o.triangle_count(), 12u);
     EXPECT_TRUE(o.lights.empty());
     EXPECT_EQ(o.environment.color, glm::vec3(0.5f));
+}
+
+// A glTF model with no camera and no lights is presented as the same OBJ is:
+// the same camera, ground, sky and sun, and the same overrides.
+TEST(Presentation, BareGltfGetsTheObjPresentation) {
+    const Scene obj = bare(kCube), gltf = bare_gltf(gltf_cube());
+    EXPECT_EQ(gltf.triangle_count(), 12u + 2u);  // the cube and the ground's two triangles
+    EXPECT_EQ(gltf.material_names.back(), "(ground)");
+    expect_near(gltf.camera.eye, obj.camera.eye);
+    expect_near(gltf.camera.target, obj.camera.target);
+    EXPECT_EQ(gltf.camera.vfov_degrees, obj.camera.vfov_degrees);
+    ASSERT_EQ(gltf.lights.size(), 1u);
+    EXPECT_EQ(gltf.lights[0].type, PunctualLight::Type::Directional);
+    expect_near(gltf.lights[0].direction, obj.lights.at(0).direction);
+    EXPECT_EQ(gltf.environment.color, obj.environment.color);
+    PresentationOptions p;
+    p.ground = false;
+    p.environment = Environment{};
+    p.environment->color = glm::vec3(0.5f);
+    const Scene o = bare_gltf(gltf_cube(), p);
+    EXPECT_EQ(o.triangle_count(), 12u);
+    EXPECT_TRUE(o.lights.empty());
+    EXPECT_EQ(o.environment.color, glm::vec3(0.5f));
+}
+
+// A file's camera is kept (--gltf-camera still picks it); the ground, sky and
+// sun are added, the sun beside that camera's view.
+TEST(Presentation, GltfCameraIsKept) {
+    test::GltfBuilder g = gltf_cube();
+    g.doc["cameras"] = nlohmann::json::array({nlohmann::json{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}},
+                                              nlohmann::json{{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}}});
+    g.doc["nodes"].push_back({{"camera", 0}, {"translation", {0.5, 0.5, 6}}});
+    g.doc["nodes"].push_back({{"camera", 1}, {"translation", {0.5, 0.5, 9}}});
+    for (const std::string pick : {"", "1"}) {
+        const Scene s = bare_gltf(g, {}, pick);
+        expect_near(s.camera.eye, {0.5f, 0.5f, pick.empty() ? 6.0f : 9.0f});
+        expect_near(s.camera.target, {0.5f, 0.5f, pick.empty() ? 5.0f : 8.0f});
+        EXPECT_EQ(s.triangle_count(), 12u + 2u);
+        ASSERT_EQ(s.lights.size(), 1u);
+        EXPECT_LT(s.lights[0].direction.y, 0.0f);
+        // From the camera at +z the sun stands behind it, turned aside.
+        EXPECT_LT(s.lights[0].direction.z, 0.0f);
+        EXPECT_GT(std::abs(s.lights[0].direction.x), 0.1f);
+    }
+}
+
+// Punctual lights and emitting materials are the model's own lighting: no
+// sun and, as for an emitting OBJ, no ground unless --env replaces the lighting.
+TEST(Presentation, GltfLightsOrEmittersReplaceSunAndGround) {
+    const Scene obj = bare(kCube);
+    test::GltfBuilder lit = gltf_cube();
+    lit.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+    lit.doc["extensions"] = {{"KHR_lights_punctual", {{"lights", nlohmann::json::array({nlohmann::json{{"type", "point"}, {"intensity", 5}}})}}}};
+    lit.doc["nodes"].push_back({{"translation", {0.5, 3, 0.5}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    test::GltfBuilder glowing = gltf_cube();
+    glowing.doc["materials"][0]["emissiveFactor"] = {1, 1, 1};
+    for (const auto* g : {&lit, &glowing}) {
+        const Scene s = bare_gltf(*g);
+        const std::size_t file_lights = g == &lit ? 1 : 0;
+        ASSERT_EQ(s.lights.size(), file_lights) << "no sun is added";
+        if (file_lights) {
+            EXPECT_EQ(s.lights[0].type, PunctualLight::Type::Point);
+        }
+        EXPECT_EQ(s.triangle_count(), 12u) << "no ground";
+        EXPECT_FALSE(s.environment.emits()) << "no sky";
+        expect_near(s.camera.eye, obj.camera.eye);  // still framed
+        PresentationOptions p;
+        p.environment = Environment{};
+        p.environment->color = glm::vec3(0.25f);
+        const Scene e = bare_gltf(*g, p);
+        EXPECT_EQ(e.triangle_count(), 12u + 2u) << "--env: the ground is added";
+        EXPECT_EQ(e.lights.size(), file_lights);
+        EXPECT_EQ(e.environment.color, glm::vec3(0.25f));
+    }
 }
 
 // Möller and Trumbore (1997) on the CPU: does the segment from o along d
@@ -187,6 +300,29 @@ TEST(PresentationRender, ControlWithoutTheSunHasNoShadow) {
     // The same regions with the sun taken out: the shadow check above must
     // then fail, or it would not be measuring the sun's shadow.
     Scene s = small(bare(kCube));
+    const glm::vec3 sun = s.lights.at(0).direction;
+    s.lights.clear();
+    const Regions r = regions(s, 12, true, sun);
+    ASSERT_GE(r.shadow, 10u);
+    EXPECT_GE(r.shadow_mean, 0.6 * r.lit_mean);
+}
+
+// The glTF cube, rendered as a user gets it: the model, the ground and the
+// model's shadow, as for the OBJ cube above.
+TEST(PresentationRender, BareGltfShowsModelGroundAndShadow) {
+    const Scene s = small(bare_gltf(gltf_cube()));
+    const glm::vec3 sun = s.lights.at(0).direction;
+    const Regions r = regions(s, 12, true, sun);
+    EXPECT_GT(r.model, r.pixels / 20) << "model pixels";
+    EXPECT_GT(r.lit, r.pixels / 5) << "lit ground pixels";
+    EXPECT_GE(r.shadow, 10u) << "ground pixels in the model's shadow";
+    EXPECT_LT(r.shadow_mean, 0.6 * r.lit_mean);
+    EXPECT_GT(r.lit_mean, 0.1);
+    EXPECT_GT(std::abs(r.model_mean - r.lit_mean), 0.1 * r.lit_mean);
+}
+
+TEST(PresentationRender, GltfControlWithoutTheSunHasNoShadow) {
+    Scene s = small(bare_gltf(gltf_cube()));
     const glm::vec3 sun = s.lights.at(0).direction;
     s.lights.clear();
     const Regions r = regions(s, 12, true, sun);
