@@ -36,7 +36,7 @@ struct GltfInstance {
 
 struct GltfMaterial {
     std::string name;
-    Material material;  // CLP_MAT_GLTF; texture slots index GltfModel::textures
+    SceneMaterial material;  // CLP_MAT_GLTF; texture slots index GltfModel::textures
 };
 
 struct GltfModel {

@@ -61,7 +61,7 @@ TEST(Gltf, EmbeddedQuadLoadsWithNormalsAndTexcoords) {
     expect_near(s.normals[0], {0, 0, 1});
     EXPECT_EQ(s.uvs[2], glm::vec2(1, 0));
     // No material: the specification's default, a white rough metal.
-    const Material& m = s.materials[s.triangle_material[0]];
+    const SceneMaterial& m = s.materials[s.triangle_material[0]];
     EXPECT_EQ(m.kind, CLP_MAT_GLTF);
     EXPECT_EQ(m.metallic, 1.0f);
     EXPECT_EQ(m.roughness, 1.0f);
@@ -218,7 +218,7 @@ TEST(Gltf, MaterialsTexturesAndSamplers) {
     g.doc["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}}};
     g.doc["textures"] = {{{"source", 0}, {"sampler", 0}}};
     const Scene s = with("t.gltf", g.embedded()).load("t.gltf");
-    const Material& m = s.materials[s.triangle_material[0]];
+    const SceneMaterial& m = s.materials[s.triangle_material[0]];
     EXPECT_EQ(s.material_names[s.triangle_material[0]], "t.gltf:painted");
     EXPECT_EQ(m.kind, CLP_MAT_GLTF);
     EXPECT_FLOAT_EQ(m.albedo[0], 0.5f);
@@ -374,7 +374,7 @@ TEST(Gltf, SuzanneFromTheRepository) {
     ASSERT_EQ(s.textures.size(), 2u);
     EXPECT_EQ(s.textures[0].width, 256);
     EXPECT_FALSE(s.textures[0].is_float);
-    const Material& m = s.materials[s.triangle_material[0]];
+    const SceneMaterial& m = s.materials[s.triangle_material[0]];
     EXPECT_EQ(m.kind, CLP_MAT_GLTF);
     EXPECT_EQ(m.texture[CLP_TEX_BASE], 0);
     EXPECT_EQ(m.texture[CLP_TEX_MR], 1);
