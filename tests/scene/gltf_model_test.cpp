@@ -79,6 +79,39 @@ TEST(Gltf, ExternalBufferAndGlbGiveTheSameTriangles) {
     for (std::size_t i = 0; i < a.vertices.size(); ++i) EXPECT_EQ(a.vertices[i], b.vertices[i]);
 }
 
+// Buffer data URIs are decoded by the loader (gltf_data_uris.cpp), not by
+// tinygltf: the same triangles as the .glb, whatever the JSON writer did with
+// "/" (escaped "\/" is valid JSON and left to tinygltf), and a wrong
+// byteLength or bad base64 still fails with the buffer named.
+TEST(Gltf, DataUriBuffersGiveTheSameTrianglesAsGlb) {
+    GltfBuilder g = quad_model();
+    g.bin += std::string("\xff\xfe\xfd", 3);  // base64 with '/' and '+' in it, and padding
+    const std::string embedded = g.embedded();
+    ASSERT_NE(embedded.find('/', embedded.find("base64,")), std::string::npos);
+    std::string escaped;
+    for (char c : embedded) escaped += c == '/' ? std::string("\\/") : std::string(1, c);
+    Files f;
+    f.files["m/e.gltf"] = embedded;
+    f.files["m/x.gltf"] = escaped;
+    f.files["m/quad.glb"] = g.glb();
+    const Scene a = f.load("m/e.gltf"), b = f.load("m/x.gltf"), c = f.load("m/quad.glb");
+    ASSERT_EQ(a.vertices.size(), c.vertices.size());
+    ASSERT_EQ(b.vertices.size(), c.vertices.size());
+    for (std::size_t i = 0; i < a.vertices.size(); ++i) {
+        EXPECT_EQ(a.vertices[i], c.vertices[i]);
+        EXPECT_EQ(b.vertices[i], c.vertices[i]);
+        EXPECT_EQ(a.uvs[i], c.uvs[i]);
+    }
+    nlohmann::json wrong = nlohmann::json::parse(embedded);
+    wrong["buffers"][0]["byteLength"] = g.bin.size() + 4;
+    const std::string e1 = with("w.gltf", wrong.dump()).error("w.gltf");
+    EXPECT_NE(e1.find("w.gltf: not a valid glTF 2.0 file"), std::string::npos) << e1;
+    wrong["buffers"][0]["byteLength"] = g.bin.size();
+    wrong["buffers"][0]["uri"] = "data:application/octet-stream;base64,@@@@";
+    const std::string e2 = with("w.gltf", wrong.dump()).error("w.gltf");
+    EXPECT_NE(e2.find("w.gltf: not a valid glTF 2.0 file"), std::string::npos) << e2;
+}
+
 TEST(Gltf, NodeHierarchyComposesTrsAndMatrices) {
     GltfBuilder g = quad_model();
     // Parent: translate (10, 0, 0), rotate 90 degrees about z, scale 2; child: a matrix moving +1 in y.
