@@ -429,7 +429,7 @@ GltfModel load_gltf(const std::string& file, const LoadOptions& options) {
             for (std::size_t i = 0; i < model.cameras.size(); ++i)
                 names += (names.empty() ? "" : ", ") + std::to_string(i) +
                          (model.cameras[i].name.empty() ? "" : " '" + model.cameras[i].name + "'");
-            throw Error(file + ": no camera '" + want + "' placed by a node" +
+            throw UnknownGltfCamera(file + ": no camera '" + want + "' placed by a node" +
                         (names.empty() ? " (the file has no cameras)" : " (cameras: " + names + ")"));
         }
         out.camera = read_camera(src, found->camera, found->world, found->node);
