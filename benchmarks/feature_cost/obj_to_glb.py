@@ -5,9 +5,12 @@ int index buffer, area-weighted vertex normals and planar texture coordinates,
 one mesh, one node. For the load-time benchmark (run.sh): the glb is made here
 rather than kept in the repository, since a million triangles take ~40 MB.
 
-Usage: obj_to_glb.py in.obj out.glb
+Usage: obj_to_glb.py in.obj out.glb [out.gltf]
+With out.gltf, the same model is also written as a .gltf whose buffer is a
+base64 data URI (as some exporters write single-file glTF).
 Python standard library only (Debian's python3)."""
 import array
+import base64
 import json
 import math
 import struct
@@ -74,8 +77,8 @@ def bounds(p):
 
 
 def main():
-    if len(sys.argv) != 3:
-        sys.exit("usage: obj_to_glb.py in.obj out.glb")
+    if len(sys.argv) not in (3, 4):
+        sys.exit("usage: obj_to_glb.py in.obj out.glb [out.gltf]")
     positions, corners = read_obj(sys.argv[1])
     p, idx = merge_vertices(positions, corners)
     n = vertex_normals(p, idx)
@@ -118,6 +121,11 @@ def main():
         f.write(struct.pack("<I4s", len(js), b"JSON") + js)
         f.write(struct.pack("<I4s", len(body), b"BIN\0") + body)
     print(f"{sys.argv[2]}: {len(idx) // 3} triangles, {count} vertices, {total} bytes")
+    if len(sys.argv) == 4:
+        doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(body[:offset]).decode()
+        with open(sys.argv[3], "w") as f:
+            json.dump(doc, f, separators=(",", ":"))
+        print(f"{sys.argv[3]}: the same with the buffer as a data URI")
 
 
 if __name__ == "__main__":
