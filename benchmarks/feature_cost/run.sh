@@ -23,6 +23,9 @@
 #   PRE_SPLIT    a build of main before the material split (793641d), optional
 #   LOAD_BEFORE  the binary whose load time is the "before" (default PRE_SPLIT)
 #   REPS, SPP (16), WIDTH x HEIGHT (320 x 240), WORK (scratch folder for the glTF files)
+#   QUICK=1      one round, no warm-up, tiny images and room:3000, results in OUT_DIR (CI runs this
+#                so the script does not rot; its numbers mean nothing)
+# Exits 1 when any run printed no result.
 set -u
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 HERE=$ROOT/benchmarks/feature_cost
@@ -37,7 +40,14 @@ SPP=${SPP:-16}
 WIDTH=${WIDTH:-320}
 HEIGHT=${HEIGHT:-240}
 WORK=${WORK:-/tmp/clpath-feature-cost}
+ROOM=room:1003542
+FIRST_ROUND=0  # round 0 is the untimed warm-up
 OUT=$ROOT/benchmarks/results/$DEV_DIR/feature-cost
+if [ -n "${QUICK:-}" ]; then
+  REPS=1 SPP=1 WIDTH=16 HEIGHT=12 ROOM=room:3000 FIRST_ROUND=1 PRE_GLTF= PRE_SPLIT= LOAD_BEFORE=
+  OUT=${OUT_DIR:?QUICK=1 needs OUT_DIR}
+fi
+failed=0
 mkdir -p "$OUT" "$WORK"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -45,7 +55,7 @@ trap 'rm -rf "$tmp"' EXIT
 header() {
   echo "== date: $(date -u +%FT%TZ)  commit: $(git -C "$ROOT" rev-parse --short HEAD)  host: $(hostname)"
   echo "== cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2-), $(nproc) cores; device: $("$CLPATH" devices 2>&1 | grep -m1 '\[0\]')"
-  echo "== binaries: this=$CLPATH pre_gltf=${PRE_GLTF:-none} pre_split=${PRE_SPLIT:-none}"
+  echo "== binaries: this=$CLPATH pre_gltf=${PRE_GLTF:-none} pre_split=${PRE_SPLIT:-none} load_before=${LOAD_BEFORE:-none}"
   echo "== load before: $(cut -d' ' -f1-3 /proc/loadavg)  (the machine is shared: other users' builds and runs)"
 }
 
@@ -77,7 +87,7 @@ run_render() {
   echo "== $SPP spp at ${WIDTH}x${HEIGHT}, path integrator, seed 1" | tee -a "$log"
   echo "round,binary,scene,options,render_s,msamples_per_s,load1" > "$csv"
   render_configs > "$tmp/configs"
-  for round in $(seq 0 "$REPS"); do
+  for round in $(seq "$FIRST_ROUND" "$REPS"); do
     while IFS='|' read -r label bin scene opts; do
       load=$(cut -d' ' -f1 /proc/loadavg)
       # shellcheck disable=SC2086
@@ -86,6 +96,7 @@ run_render() {
       [ "$round" = 0 ] && continue  # the warm-up round: kernels compiled and cached
       rs=$(sed -n 's/.* render_s=\([0-9.]*\).*/\1/p' <<< "$line")
       ms=$(sed -n 's/.* msamples_per_s=\([0-9.]*\).*/\1/p' <<< "$line")
+      [ -n "$ms" ] || failed=$((failed + 1))
       echo "== round $round: $label $(basename "$scene") ${opts:-specialised}: ${ms:-FAILED} Msamples/s (load $load)" | tee -a "$log"
       echo "$round,$label,$(basename "$scene" .json),${opts:-specialised},$rs,$ms,$load" >> "$csv"
     done < "$tmp/configs"
@@ -99,13 +110,13 @@ run_render() {
 run_load() {
   local log=$OUT/load-log.txt csv=$OUT/load-runs.csv
   header | tee "$log"
-  if [ ! -s "$WORK/room.glb" ] || [ ! -s "$WORK/room.gltf" ]; then
-    "$CLPATH" export room:1003542 "$WORK/room-obj/room.json" | tee -a "$log"
+  if [ -n "${QUICK:-}" ] || [ ! -s "$WORK/room.glb" ] || [ ! -s "$WORK/room.gltf" ]; then
+    "$CLPATH" export "$ROOM" "$WORK/room-obj/room.json" | tee -a "$log"
     python3 "$HERE/obj_to_glb.py" "$WORK/room-obj/room.obj" "$WORK/room.glb" "$WORK/room.gltf" | tee -a "$log"
     rm -rf "$WORK/room-obj"
   fi
   echo "round,binary,file,load_s,triangles,load1" > "$csv"
-  for round in $(seq 0 "$REPS"); do
+  for round in $(seq "$FIRST_ROUND" "$REPS"); do
     for b in this:$CLPATH before:$LOAD_BEFORE; do
       [ -n "${b#*:}" ] || continue
       for f in room.glb room.gltf; do
@@ -114,6 +125,7 @@ run_load() {
                grep "^clpath: loaded ")
         [ "$round" = 0 ] && continue  # warm-up: the file in the page cache, kernels compiled
         s=$(sed -n 's/.* in \([0-9.]*\) s: .*/\1/p' <<< "$line")
+        [ -n "$s" ] || failed=$((failed + 1))
         n=$(sed -n 's/.* s: \([0-9]*\) triangles.*/\1/p' <<< "$line")
         echo "== round $round: ${b%%:*} $f: ${s:-FAILED} s, $n triangles (load $load)" | tee -a "$log"
         echo "$round,${b%%:*},$f,$s,$n,$load" >> "$csv"
@@ -131,3 +143,7 @@ case $WHAT in
   all) run_render; run_load ;;
   *) echo "usage: $0 [render|load|all] [RESULT_DIR_NAME]" >&2; exit 2 ;;
 esac
+if [ "$failed" != 0 ]; then
+  echo "$failed runs printed no result (see the logs in $OUT)" >&2
+  exit 1
+fi
