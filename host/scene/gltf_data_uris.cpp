@@ -1,5 +1,4 @@
 #include <array>
-#include <cctype>
 
 #include "scene/gltf_parts.hpp"
 
