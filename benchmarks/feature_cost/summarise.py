@@ -24,24 +24,42 @@ def ratio(a, b):
     return f"{a[0] / b[0]:.3f}" if a and b and b[0] > 0 else "-"
 
 
+def paired(rows, a, b):
+    """Median and range over rounds of a's rate / b's rate in the same round (the two
+    ran minutes apart at most, so they saw more similar load than rates from different rounds)."""
+    by_round = defaultdict(dict)
+    for r in rows:
+        if r["msamples_per_s"]:
+            by_round[r["round"]][(r["binary"], r["scene"], r["options"])] = float(r["msamples_per_s"])
+    ratios = [v[a] / v[b] for v in by_round.values() if a in v and b in v and v[b] > 0]
+    if not ratios:
+        return "-"
+    return f"{statistics.median(ratios):.2f} ({min(ratios):.2f}-{max(ratios):.2f})"
+
+
 def render(rows):
     med = medians(rows, lambda r: (r["binary"], r["scene"], r["options"]), "msamples_per_s")
     print("Msamples/s, median of the rounds (min-max, rounds); higher is faster.\n")
     print("### Scenes without textures: this build against the builds before the material split and before glTF\n")
+    print("Ratios: of the medians, and in brackets the median (min-max) of the same round's ratios.\n")
     print("| scene | kernel | this | before split (793641d) | before glTF (a0af516) | this / before split | this / before glTF |")
     print("|---|---|---|---|---|---|---|")
     for scene in ("cornell-classic", "bunny"):
         for opt in ("specialised", "--all-features"):
             t, s, g = (med.get((b, scene, opt)) for b in ("this", "pre_split", "pre_gltf"))
-            print(f"| {scene} | {opt} | {fmt(t)} | {fmt(s)} | {fmt(g)} | {ratio(t, s)} | {ratio(t, g)} |")
+            ps = paired(rows, ("this", scene, opt), ("pre_split", scene, opt))
+            pg = paired(rows, ("this", scene, opt), ("pre_gltf", scene, opt))
+            print(f"| {scene} | {opt} | {fmt(t)} | {fmt(s)} | {fmt(g)} | {ratio(t, s)} [{ps}] | {ratio(t, g)} [{pg}] |")
     print("\n### Textured scenes against the same scenes with one grey diffuse material\n")
-    print("| scene | build | textured | plain | textured / plain |")
-    print("|---|---|---|---|---|")
+    print("| scene | build | textured | plain | textured / plain | this / before split, textured |")
+    print("|---|---|---|---|---|---|")
     for textured, plain in (("textured", "textured-plain"), ("suzanne-textured", "suzanne-plain")):
         for b, name in (("this", "this"), ("pre_split", "before split (793641d)")):
             t, p = med.get((b, textured, "specialised")), med.get((b, plain, "specialised"))
+            same = paired(rows, (b, textured, "specialised"), (b, plain, "specialised"))
+            cross = paired(rows, ("this", textured, "specialised"), ("pre_split", textured, "specialised"))
             if t or p:
-                print(f"| {textured} | {name} | {fmt(t)} | {fmt(p)} | {ratio(t, p)} |")
+                print(f"| {textured} | {name} | {fmt(t)} | {fmt(p)} | {ratio(t, p)} [{same}] | {cross if b == 'this' else ''} |")
 
 
 def load(rows):
