@@ -33,7 +33,9 @@ typedef struct {
     global const AliasEntry* alias;
     EnvMap env;
     constant const FrameParams* fp;
-    SurfaceData sd; /* textures and vertex attributes (textures.cl) */
+#if defined(CLP_SURFACE_PARAMS) || defined(CLP_HAS_ALPHA)
+    SurfaceData sd; /* textures, vertex attributes, material extensions (textures.cl): only where read */
+#endif
 #ifdef CLP_HAS_ALPHA
     AlphaScene alpha;
 #endif
@@ -271,12 +273,14 @@ kernel void render_paths(global const AccelNode* nodes, global const TriVerts* t
     sc.env.pixels = env_pixels;
     sc.env.cdf = env_cdf;
     sc.fp = fp;
+#if defined(CLP_SURFACE_PARAMS) || defined(CLP_HAS_ALPHA)
     sc.sd.desc = tex_desc;
     sc.sd.texels = texels;
     sc.sd.attrs = attrs;
     sc.sd.material_ext = material_ext;
     sc.sd.attr_stride = fp->attr_stride;
     sc.sd.flags = fp->scene_flags;
+#endif
 #ifdef CLP_HAS_ALPHA
     sc.alpha.sd = sc.sd;
     sc.alpha.tri_material = tri_material;
