@@ -33,7 +33,9 @@ typedef struct {
     global const AliasEntry* alias;
     EnvMap env;
     constant const FrameParams* fp;
-    SurfaceData sd; /* textures and vertex attributes (textures.cl) */
+#if defined(CLP_SURFACE_PARAMS) || defined(CLP_HAS_ALPHA)
+    SurfaceData sd; /* textures, vertex attributes, material extensions (textures.cl): only where read */
+#endif
 #ifdef CLP_HAS_ALPHA
     AlphaScene alpha;
 #endif
@@ -96,7 +98,8 @@ inline Surface surface_at(const SceneData* sc, const Hit* h, float3 d) {
     s.ng = normalize(cross(v1 - v0, v2 - v0));
     s.front = dot(s.ng, d) < 0.0f;
     s.p = hit_point(v0, v1, v2, h->b1, h->b2, &s.err);
-    s.m = &sc->materials[sc->tri_material[s.tv->prim]];
+    uint mi = sc->tri_material[s.tv->prim];
+    s.m = &sc->materials[mi];
     s.ns = s.ng;
 #ifdef CLP_HAS_NORMALS
     if (sc->fp->scene_flags & CLP_SCENE_NORMALS) {
@@ -107,7 +110,7 @@ inline Surface surface_at(const SceneData* sc, const Hit* h, float3 d) {
     }
 #endif
 #ifdef CLP_SURFACE_PARAMS
-    surface_params(&sc->sd, s.m, s.tv, h->b1, h->b2, &s.ns, &s.mat);
+    surface_params(&sc->sd, s.m, mi, s.tv, h->b1, h->b2, &s.ns, &s.mat);
 #endif
     return s;
 }
@@ -250,7 +253,8 @@ inline float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
 /* ---- the kernel --------------------------------------------------------- */
 
 kernel void render_paths(global const AccelNode* nodes, global const TriVerts* tris, global const uint* tri_material,
-                         global const Material* materials, global const float* normals, global const Light* lights,
+                         global const Material* materials, global const MaterialExt* material_ext,
+                         global const float* normals, global const Light* lights,
                          global const AliasEntry* alias, global const float4* env_pixels, global const float* env_cdf,
                          global const float* attrs, global const TextureDesc* tex_desc, global const uint* texels,
                          constant const FrameParams* fp, global AccumPixel* accum, global Counters* counters) {
@@ -269,15 +273,17 @@ kernel void render_paths(global const AccelNode* nodes, global const TriVerts* t
     sc.env.pixels = env_pixels;
     sc.env.cdf = env_cdf;
     sc.fp = fp;
+#if defined(CLP_SURFACE_PARAMS) || defined(CLP_HAS_ALPHA)
     sc.sd.desc = tex_desc;
     sc.sd.texels = texels;
     sc.sd.attrs = attrs;
+    sc.sd.material_ext = material_ext;
     sc.sd.attr_stride = fp->attr_stride;
     sc.sd.flags = fp->scene_flags;
+#endif
 #ifdef CLP_HAS_ALPHA
     sc.alpha.sd = sc.sd;
     sc.alpha.tri_material = tri_material;
-    sc.alpha.materials = materials;
 #endif
 
     uint rays = 0, nonfinite = 0, px, py;

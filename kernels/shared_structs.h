@@ -35,7 +35,7 @@ typedef std::uint32_t uint;
                                  conductor by metallic (glTF 2.0 specification, appendix B) */
 #define CLP_MAT_KIND_COUNT 5u
 
-/* Material.alpha_mode: how a surface's coverage (base colour alpha) is used. */
+/* MaterialExt.alpha_mode: how a surface's coverage (base colour alpha) is used. */
 #define CLP_ALPHA_OPAQUE 0u /* alpha ignored */
 #define CLP_ALPHA_MASK 1u   /* a hit with alpha < alpha_cutoff is not a hit (cut-out) */
 #define CLP_ALPHA_BLEND 2u  /* a hit is kept with probability alpha (stochastic coverage) */
@@ -50,7 +50,7 @@ typedef std::uint32_t uint;
 #define CLP_TEXF_NEAREST 32u /* nearest texel instead of bilinear */
 #define CLP_NO_TEXTURE (-1)
 
-/* Material.texture slots. */
+/* MaterialExt.texture slots. */
 #define CLP_TEX_BASE 0u     /* base colour (sRGB) and alpha */
 #define CLP_TEX_MR 1u       /* metallic (B) and roughness (G), linear */
 #define CLP_TEX_NORMAL 2u   /* tangent-space normal, linear */
@@ -112,6 +112,7 @@ typedef std::uint32_t uint;
 #define CLP_SCENE_UVS 2u      /* the attribute buffer holds texture coordinates (6 floats per triangle) */
 #define CLP_SCENE_TANGENTS 4u /* ... then tangents (xyz and sign, 12 floats per triangle) */
 #define CLP_SCENE_COLORS 8u   /* ... then vertex colours (RGBA, 12 floats per triangle) */
+#define CLP_SCENE_MATERIAL_EXT 16u /* the MaterialExt buffer holds one record per material (else one zero record) */
 
 /* Material flags. */
 #define CLP_MATF_TWO_SIDED_EMISSION 1u /* emits from the back face too */
@@ -178,22 +179,34 @@ typedef struct {
     uint pad2;
 } TriVerts;
 
-/* A material: one record for every kind, read only by the kinds that use it. */
+/* A material: one record for every kind, read only by the kinds that use it.
+ * It holds what every scene's kernels read, and keeps the 48 bytes it had
+ * before textures and glTF materials: a scene without them fetches and copies
+ * no more per hit than it did then. metallic sits in the spare word, read only
+ * by the glTF kind's BSDF with the other lobe parameters. */
 typedef struct {
-    float albedo[3];   /* reflectance (diffuse), tint (mirror, glass), F0 (conductor); 0: does not reflect */
+    float albedo[3];   /* reflectance (diffuse), tint (mirror, glass), F0 (conductor), base colour (gltf); 0: does not reflect */
     uint kind;         /* CLP_MAT_* */
     float emission[3]; /* emitted radiance (W sr^-1 m^-2 per channel) */
     uint flags;        /* CLP_MATF_* */
     float roughness;   /* conductor, dielectric, gltf: GGX alpha = roughness^2; 0 = smooth */
     float ior;         /* dielectric, gltf: index of refraction inside / outside */
     float metallic;    /* gltf: conductor weight */
-    float alpha;       /* coverage factor (base colour alpha), see alpha_mode */
-    int texture[4];    /* CLP_TEX_* slots: index into the texture descriptors, or CLP_NO_TEXTURE */
-    uint alpha_mode;   /* CLP_ALPHA_* */
-    float alpha_cutoff;
-    float normal_scale; /* normal map: scales the tangent-space x and y */
     uint pad0;
 } Material;
+
+/* The rest of a material: texture maps and coverage, one record per material
+ * in a buffer of its own (parallel to the materials). Only kernels compiled
+ * with textures (CLP_HAS_TEXTURES) or alpha cut-outs (CLP_HAS_ALPHA) read it;
+ * for a scene with neither the host uploads one zero record, and
+ * FrameParams.scene_flags lacks CLP_SCENE_MATERIAL_EXT. */
+typedef struct {
+    int texture[4];     /* CLP_TEX_* slots: index into the texture descriptors, or CLP_NO_TEXTURE */
+    float alpha;        /* coverage factor (base colour alpha), see alpha_mode */
+    uint alpha_mode;    /* CLP_ALPHA_* */
+    float alpha_cutoff;
+    float normal_scale; /* normal map: scales the tangent-space x and y */
+} MaterialExt;
 
 /* One texture in the texel buffer: width x height texels from `offset` (in
  * uints; a float texel takes 4), row 0 at the top (v = 0), with its addressing. */
@@ -316,7 +329,8 @@ CLP_STATIC_ASSERT(__builtin_offsetof(BvhNode, child0) == 12 && __builtin_offseto
                   bvh_node_rows);
 CLP_STATIC_ASSERT(__builtin_offsetof(TriVerts, v1) == 16 && __builtin_offsetof(TriVerts, v2) == 32,
                   tri_verts_rows);
-CLP_STATIC_ASSERT(sizeof(Material) == 80, material_is_80_bytes);
+CLP_STATIC_ASSERT(sizeof(Material) == 48, material_is_48_bytes);
+CLP_STATIC_ASSERT(sizeof(MaterialExt) == 32, material_ext_is_32_bytes);
 CLP_STATIC_ASSERT(sizeof(TextureDesc) == 16, texture_desc_is_16_bytes);
 CLP_STATIC_ASSERT(sizeof(CameraData) == 64, camera_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(FrameParams) == 160, frame_params_is_160_bytes);

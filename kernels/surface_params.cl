@@ -35,7 +35,7 @@ inline float4 surface_tangent(const SurfaceData* sd, global const TriVerts* tv, 
     return (float4)(dpdu, dot(cross(n, dpdu), dpdv) > 0.0f ? -1.0f : 1.0f);
 }
 
-inline float3 normal_mapped(const SurfaceData* sd, global const Material* gm, global const TriVerts* tv, float b1,
+inline float3 normal_mapped(const SurfaceData* sd, global const MaterialExt* gm, global const TriVerts* tv, float b1,
                             float b2, float2 uv, float3 ns) {
     float3 tn = texture_sample(sd, gm->texture[CLP_TEX_NORMAL], uv, 0).xyz * 2.0f - 1.0f;
     tn.x *= gm->normal_scale;
@@ -52,34 +52,38 @@ inline float3 normal_mapped(const SurfaceData* sd, global const Material* gm, gl
 }
 #endif
 
-inline void surface_params(const SurfaceData* sd, global const Material* gm, global const TriVerts* tv, float b1,
-                           float b2, float3* ns, Material* out) {
+/* gm is material `mi` of the table (its MaterialExt has the same index). */
+inline void surface_params(const SurfaceData* sd, global const Material* gm, uint mi, global const TriVerts* tv,
+                           float b1, float b2, float3* ns, Material* out) {
     *out = *gm;
     float3 base = CLP_M3(gm->albedo);
 #ifdef CLP_HAS_VERTEX_COLORS
     base *= surface_color(sd, tv->prim, b1, b2).xyz;
 #endif
 #ifdef CLP_HAS_TEXTURES
-    int any = gm->texture[0] != CLP_NO_TEXTURE || gm->texture[1] != CLP_NO_TEXTURE ||
-              gm->texture[2] != CLP_NO_TEXTURE || gm->texture[3] != CLP_NO_TEXTURE;
+    /* A kernel with every feature may render a scene whose materials map nothing: no records then. */
+    global const MaterialExt* ext = &sd->material_ext[mi];
+    int any = (sd->flags & CLP_SCENE_MATERIAL_EXT) &&
+              (ext->texture[0] != CLP_NO_TEXTURE || ext->texture[1] != CLP_NO_TEXTURE ||
+               ext->texture[2] != CLP_NO_TEXTURE || ext->texture[3] != CLP_NO_TEXTURE);
     if (any) {
         float2 uv = surface_uv(sd, tv->prim, b1, b2);
-        int t = gm->texture[CLP_TEX_BASE];
+        int t = ext->texture[CLP_TEX_BASE];
         if (t != CLP_NO_TEXTURE) base *= texture_sample(sd, t, uv, 1).xyz;
-        t = gm->texture[CLP_TEX_MR];
+        t = ext->texture[CLP_TEX_MR];
         if (t != CLP_NO_TEXTURE) {
             float4 mr = texture_sample(sd, t, uv, 0);
             out->roughness *= mr.y;
             out->metallic *= mr.z;
         }
-        t = gm->texture[CLP_TEX_EMISSION];
+        t = ext->texture[CLP_TEX_EMISSION];
         if (t != CLP_NO_TEXTURE) {
             float3 e = CLP_M3(gm->emission) * texture_sample(sd, t, uv, 1).xyz;
             out->emission[0] = e.x;
             out->emission[1] = e.y;
             out->emission[2] = e.z;
         }
-        if (gm->texture[CLP_TEX_NORMAL] != CLP_NO_TEXTURE) *ns = normal_mapped(sd, gm, tv, b1, b2, uv, *ns);
+        if (ext->texture[CLP_TEX_NORMAL] != CLP_NO_TEXTURE) *ns = normal_mapped(sd, ext, tv, b1, b2, uv, *ns);
     }
 #endif
     out->albedo[0] = base.x;

@@ -13,7 +13,9 @@
  * material), CLP_HAS_MAT_GLTF. With textures or vertex colours a hit's
  * material is a private copy with them applied (CLP_SURFACE_PARAMS), and the
  * material functions take private pointers; otherwise they read the global
- * material table directly, as before. */
+ * material table directly, as before. Texture slots and coverage are in the
+ * MaterialExt buffer (shared_structs.h), read only here and by
+ * surface_params.cl, and only under CLP_HAS_TEXTURES or CLP_HAS_ALPHA. */
 #ifndef CLP_TEXTURES_CL
 #define CLP_TEXTURES_CL
 
@@ -32,6 +34,7 @@ typedef struct {
     global const TextureDesc* desc;
     global const uint* texels;
     global const float* attrs; /* fp->attr_stride floats per triangle, in scene order */
+    global const MaterialExt* material_ext; /* per material when flags has CLP_SCENE_MATERIAL_EXT */
     uint attr_stride;
     uint flags; /* CLP_SCENE_* */
 } SurfaceData;
@@ -123,7 +126,7 @@ inline float4 surface_color(const SurfaceData* sd, uint prim, float b1, float b2
 }
 
 /* Coverage of a hit: base colour alpha x texture alpha x vertex colour alpha. */
-inline float surface_alpha(const SurfaceData* sd, global const Material* m, uint prim, float b1, float b2) {
+inline float surface_alpha(const SurfaceData* sd, global const MaterialExt* m, uint prim, float b1, float b2) {
     float a = m->alpha;
 #ifdef CLP_HAS_TEXTURES
     if (m->texture[CLP_TEX_BASE] != CLP_NO_TEXTURE)
@@ -139,9 +142,8 @@ inline float surface_alpha(const SurfaceData* sd, global const Material* m, uint
 
 #ifdef CLP_HAS_ALPHA
 typedef struct {
-    SurfaceData sd;
+    SurfaceData sd; /* its material_ext holds every material's coverage (a scene with alpha has them) */
     global const uint* tri_material;
-    global const Material* materials;
 } AlphaScene;
 
 /* Whether a ray's hit on triangle `prim` counts. MASK: alpha >= cutoff.
@@ -149,7 +151,7 @@ typedef struct {
  * transmittance is 1 - alpha, as alpha blending would give), decided by a
  * hash of the ray and the triangle, so one ray always sees the same thing. */
 inline int alpha_keeps_hit(const AlphaScene* as, uint prim, float b1, float b2, const RayPre* r) {
-    global const Material* m = &as->materials[as->tri_material[prim]];
+    global const MaterialExt* m = &as->sd.material_ext[as->tri_material[prim]];
     if (m->alpha_mode == CLP_ALPHA_OPAQUE) return 1;
     float a = surface_alpha(&as->sd, m, prim, b1, b2);
     if (m->alpha_mode == CLP_ALPHA_MASK) return a >= m->alpha_cutoff;

@@ -22,6 +22,7 @@
 #include "cli/mpi_launch.hpp"
 #include "render/renderer.hpp"
 #include "scene/builtin_scenes.hpp"
+#include "scene/gltf_model.hpp"
 #include "scene/scene_loader.hpp"
 #include "util/env_values.hpp"
 #include "util/error.hpp"
@@ -83,7 +84,12 @@ int run_render(const RenderOptions& o) {
     if (o.no_ground && !is_bare_mesh(o.scene))
         std::fprintf(stderr, "clpath: warning: --no-ground has no effect on %s: only a bare mesh gets a ground\n",
                      o.scene.c_str());
-    Scene scene = load_scene(o.scene, load);
+    Scene scene;
+    try {
+        scene = load_scene(o.scene, load);
+    } catch (const UnknownGltfCamera& e) {
+        throw UsageError(std::string("--gltf-camera: ") + e.what());
+    }
     if (load.presentation.environment) scene.environment = *load.presentation.environment;
     if (o.camera) scene.camera = apply_camera_option(*o.camera, scene.camera);
     DisplaySettings display;

@@ -8,6 +8,10 @@ namespace {
 // Kernels take no empty buffers: a missing part gets one zero record.
 std::size_t normal_bytes(const PreparedScene& s) { return std::max<std::size_t>(16, s.normals.size() * 12); }
 std::size_t light_bytes(const PreparedScene& s) { return std::max<std::size_t>(1, s.lights.size()) * sizeof(Light); }
+// One zero record when no kernel reads them (no textures, no alpha).
+std::size_t material_ext_bytes(const PreparedScene& s) {
+    return std::max<std::size_t>(1, s.material_ext.size()) * sizeof(MaterialExt);
+}
 std::size_t alias_bytes(const PreparedScene& s) {
     return std::max<std::size_t>(1, s.light_alias.size()) * sizeof(AliasEntry);
 }
@@ -20,6 +24,7 @@ std::vector<std::pair<std::string, std::size_t>> DeviceScene::memory_needs(const
             {"triangles", s.accel.triangles.size() * sizeof(TriVerts)},
             {"triangle materials", s.triangle_material.size() * sizeof(std::uint32_t)},
             {"materials", s.materials.size() * sizeof(Material)},
+            {"material extensions", material_ext_bytes(s)},
             {"shading normals", normal_bytes(s)},
             {"lights", light_bytes(s) + alias_bytes(s)},
             {"environment image", s.environment.pixels.size() * sizeof(float)},
@@ -39,6 +44,9 @@ DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s) : ctx_(ctx), summ
                                "triangle materials", s.triangle_material.data());
     materials_ =
         ctx.buffer(s.materials.size() * sizeof(Material), CL_MEM_READ_ONLY, "materials", s.materials.data());
+    const MaterialExt no_ext{};
+    material_ext_ = ctx.buffer(material_ext_bytes(s), CL_MEM_READ_ONLY, "material extensions",
+                               s.material_ext.empty() ? static_cast<const void*>(&no_ext) : s.material_ext.data());
     const std::vector<float> zeros(16, 0.0f);
     normals_ = ctx.buffer(normal_bytes(s), CL_MEM_READ_ONLY, "shading normals",
                           s.normals.empty() ? static_cast<const void*>(zeros.data()) : s.normals.data());
@@ -64,8 +72,9 @@ DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s) : ctx_(ctx), summ
 }
 
 void DeviceScene::bind(Kernel& k, cl_uint first) const {
-    const Buffer* args[kArgCount] = {&nodes_,  &tris_,  &tri_material_, &materials_, &normals_, &lights_,
-                                     &alias_,  &env_pixels_, &env_cdf_, &attrs_,  &tex_desc_, &texels_};
+    const Buffer* args[kArgCount] = {&nodes_,   &tris_,       &tri_material_, &materials_, &material_ext_,
+                                     &normals_, &lights_,     &alias_,        &env_pixels_, &env_cdf_,
+                                     &attrs_,   &tex_desc_,   &texels_};
     for (cl_uint i = 0; i < kArgCount; ++i) k.arg(first + i, *args[i]);
 }
 

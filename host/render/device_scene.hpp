@@ -22,10 +22,10 @@ public:
     static std::vector<std::pair<std::string, std::size_t>> memory_needs(const PreparedScene& scene);
 
     // Number of kernel arguments bind() sets.
-    static constexpr cl_uint kArgCount = 12;
+    static constexpr cl_uint kArgCount = 13;
     // Sets the arrays as arguments first ... first + kArgCount - 1, in the
     // order of render_paths' parameters (kernels/integrator.cl): nodes,
-    // triangles, triangle materials, materials, normals, lights, alias table,
+    // triangles, triangle materials, materials, material extensions, normals, lights, alias table,
     // environment image, environment distribution, surface attributes,
     // texture descriptors, texels.
     void bind(Kernel& kernel, cl_uint first = 0) const;
@@ -38,7 +38,7 @@ public:
 private:
     Context& ctx_;
     SceneSummary summary_;
-    Buffer nodes_, tris_, tri_material_, materials_, normals_, lights_, alias_, env_pixels_, env_cdf_;
+    Buffer nodes_, tris_, tri_material_, materials_, material_ext_, normals_, lights_, alias_, env_pixels_, env_cdf_;
     Buffer attrs_, tex_desc_, texels_;
 };
 

@@ -19,7 +19,7 @@ SceneFeatures scene_features(const Scene& scene) {
     for (auto m : scene.triangle_material) used[m] = true;
     for (std::size_t i = 0; i < used.size(); ++i) {
         if (!used[i]) continue;
-        const Material& m = scene.materials[i];
+        const SceneMaterial& m = scene.materials[i];
         f.materials[m.kind] = true;
         f.emission = f.emission || emits(m);
         for (int t : m.texture) f.textures = f.textures || t != CLP_NO_TEXTURE;

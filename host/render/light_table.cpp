@@ -46,7 +46,7 @@ LightTable build_light_table(const Scene& scene, const KernelFeatures& f, const 
     std::vector<double> power;
     if (f.triangle_lights) {
         for (std::size_t i = 0; i < scene.triangle_count(); ++i) {
-            const Material& m = scene.materials[scene.triangle_material[i]];
+            const SceneMaterial& m = scene.materials[scene.triangle_material[i]];
             if (!emits(m)) continue;
             // An emission texture or a cut-out varies the emitted light across the
             // triangle: such emitters are found by BSDF sampling alone (unbiased),

@@ -17,7 +17,7 @@ void validate_scene(const Scene& s) {
     if (!s.normals.empty() && s.normals.size() != s.vertices.size())
         throw Error("internal: scene '" + s.name + "' has normals for some vertices only");
     for (std::size_t i = 0; i < s.materials.size(); ++i) {
-        const Material& m = s.materials[i];
+        const SceneMaterial& m = s.materials[i];
         const std::string name = i < s.material_names.size() ? s.material_names[i] : std::to_string(i);
         if (m.kind >= CLP_MAT_KIND_COUNT) throw Error("material '" + name + "': unknown kind");
         if (m.kind == CLP_MAT_DIELECTRIC && !(m.ior > 0))
@@ -77,13 +77,15 @@ std::shared_ptr<const PreparedScene> prepare_scene(const Scene& scene, const Ren
     for (auto& t : p->accel.triangles) t.light = lights.light_of_triangle[t.prim];
 
     p->triangle_material = scene.triangle_material;
-    p->materials = scene.materials;
+    p->materials.assign(scene.materials.begin(), scene.materials.end());  // the core records
+    if (sum.features.textures || sum.features.alpha)  // else no kernel reads them (kernels/textures.cl)
+        p->material_ext.assign(scene.materials.begin(), scene.materials.end());
     p->normals = scene.normals;
     p->lights = std::move(lights.lights);
     p->light_alias = std::move(lights.alias);
     p->surface = pack_surface_buffers(scene);
     sum.attr_stride = p->surface.attr_stride;
-    sum.surface_flags = p->surface.scene_flags;
+    sum.surface_flags = p->surface.scene_flags | (p->material_ext.empty() ? 0u : CLP_SCENE_MATERIAL_EXT);
     return p;
 }
 

@@ -39,7 +39,7 @@ struct SceneSummary {
     float environment_rotation = 0;  // radians about +y
     float diagonal = 1;              // of the bounding box; 1 for a degenerate one
     std::uint32_t attr_stride = 0;   // FrameParams.attr_stride (render/surface_buffers.hpp)
-    std::uint32_t surface_flags = 0; // CLP_SCENE_UVS, _TANGENTS, _COLORS
+    std::uint32_t surface_flags = 0; // CLP_SCENE_UVS, _TANGENTS, _COLORS, _MATERIAL_EXT
 };
 
 struct PreparedScene {
@@ -49,6 +49,10 @@ struct PreparedScene {
     Bvh accel;
     std::vector<std::uint32_t> triangle_material;  // per scene triangle
     std::vector<Material> materials;
+    // Parallel to materials when the scene maps a texture or cuts out by
+    // alpha (summary.surface_flags has CLP_SCENE_MATERIAL_EXT); else empty,
+    // and the device holds one zero record.
+    std::vector<MaterialExt> material_ext;
     std::vector<glm::vec3> normals;  // empty, or three per scene triangle
     std::vector<Light> lights;
     std::vector<AliasEntry> light_alias;  // parallel to lights

@@ -1,4 +1,6 @@
+#include <algorithm>
 #include <cstring>
+#include <type_traits>
 
 #include "scene/gltf_parts.hpp"
 #include "util/error.hpp"
@@ -49,30 +51,66 @@ T load(const unsigned char* p) {
     std::memcpy(&v, p, sizeof v);
     return v;
 }
-}  // namespace
 
-float View::get(std::size_t i, int c) const {
-    if (!data) return 0;
-    const unsigned char* p = data + i * stride + std::size_t(c) * std::size_t(component_size(component_type));
-    // Normalized integers: KHR glTF 2.0 section 3.11 (signed ones clamp at -1).
-    switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return load<std::uint8_t>(p) / 255.0f;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return load<std::uint16_t>(p) / 65535.0f;
-    case TINYGLTF_COMPONENT_TYPE_BYTE: return std::max(load<std::int8_t>(p) / 127.0f, -1.0f);
-    case TINYGLTF_COMPONENT_TYPE_SHORT: return std::max(load<std::int16_t>(p) / 32767.0f, -1.0f);
-    default: return 0;
+// Elements of component type T, each `from` components read and mapped by
+// `convert`, into rows of `width` floats.
+template <class T, class Convert>
+void decode_rows(const View& v, int width, float* out, Convert convert) {
+    const std::size_t from = std::size_t(v.components);
+    if constexpr (std::is_same_v<T, float>) {
+        if (v.stride == sizeof(float) * from && std::size_t(width) == from) {
+            std::memcpy(out, v.data, v.count * from * sizeof(float));  // tightly packed floats: one copy
+            return;
+        }
+    }
+    for (std::size_t i = 0; i < v.count; ++i) {
+        const unsigned char* p = v.data + i * v.stride;
+        for (std::size_t c = 0; c < from; ++c) out[i * std::size_t(width) + c] = convert(load<T>(p + c * sizeof(T)));
     }
 }
+}  // namespace
 
-std::uint32_t View::index(std::size_t i) const {
-    if (!data) return 0;
-    const unsigned char* p = data + i * stride;
+std::vector<float> View::floats(int width, float fill) const {
+    std::vector<float> out(count * std::size_t(width), 0.0f);
+    if (width > components)
+        for (std::size_t i = 0; i < count; ++i)
+            for (int c = components; c < width; ++c) out[i * std::size_t(width) + std::size_t(c)] = fill;
+    if (!data) return out;  // no buffer view: the accessor's own components are zeros
+    float* o = out.data();
     switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return load<std::uint8_t>(p);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return load<std::uint16_t>(p);
-    default: return load<std::uint32_t>(p);
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: decode_rows<float>(*this, width, o, [](float x) { return x; }); break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        decode_rows<std::uint8_t>(*this, width, o, [](std::uint8_t x) { return x / 255.0f; });
+        break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        decode_rows<std::uint16_t>(*this, width, o, [](std::uint16_t x) { return x / 65535.0f; });
+        break;
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+        decode_rows<std::int8_t>(*this, width, o, [](std::int8_t x) { return std::max(x / 127.0f, -1.0f); });
+        break;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+        decode_rows<std::int16_t>(*this, width, o, [](std::int16_t x) { return std::max(x / 32767.0f, -1.0f); });
+        break;
+    default: break;
     }
+    return out;
+}
+
+std::vector<std::uint32_t> View::indices() const {
+    std::vector<std::uint32_t> out(count, 0u);
+    if (!data) return out;
+    auto copy = [&](auto type_tag) {
+        using T = decltype(type_tag);
+        for (std::size_t i = 0; i < count; ++i) out[i] = load<T>(data + i * stride);
+    };
+    switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: copy(std::uint8_t{}); break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: copy(std::uint16_t{}); break;
+    default:
+        if (stride == sizeof(std::uint32_t)) std::memcpy(out.data(), data, count * sizeof(std::uint32_t));
+        else copy(std::uint32_t{});
+    }
+    return out;
 }
 
 View view(const Source& src, int index, const std::string& path, int type, int alt_type,

@@ -104,7 +104,7 @@ public:
         if (pbr.baseColorFactor.size() == 4)
             for (int c = 0; c < 4; ++c)
                 base[c] = factor(src_, pbr.baseColorFactor[std::size_t(c)], pp + ".baseColorFactor[" + std::to_string(c) + "]", 0, 1);
-        Material m = gltf_material(glm::vec3(base), factor(src_, pbr.metallicFactor, pp + ".metallicFactor", 0, 1),
+        SceneMaterial m = gltf_material(glm::vec3(base), factor(src_, pbr.metallicFactor, pp + ".metallicFactor", 0, 1),
                                    factor(src_, pbr.roughnessFactor, pp + ".roughnessFactor", 0, 1));
         m.alpha = base.w;
         glm::vec3 e(0);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 
@@ -55,13 +56,16 @@ std::string percent_decode(const std::string& s, bool& ok) {
 
 // The files of one load, for tinygltf's file-system callbacks: everything is
 // read through LoadOptions::read_file, so tests and fuzzers work from memory.
+// Decoded data URIs are served under their stand-in names (gltf::extract_data_uris).
 struct Files {
     const LoadOptions* options;
     std::string last_error;
+    gltf::DataUris* data_uris = nullptr;
 };
 
 bool fs_exists(const std::string& path, void* user) {
     auto* f = static_cast<Files*>(user);
+    if (f->data_uris && gltf::find_data_uri(*f->data_uris, path)) return true;
     if (f->options->file_exists) return f->options->file_exists(path);
     std::error_code ec;
     return fs::is_regular_file(path, ec);
@@ -69,6 +73,11 @@ bool fs_exists(const std::string& path, void* user) {
 std::string fs_expand(const std::string& path, void*) { return path; }
 bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
     auto* f = static_cast<Files*>(user);
+    if (f->data_uris)
+        if (auto* bytes = gltf::find_data_uri(*f->data_uris, path)) {
+            *out = std::move(*bytes);  // read once, by the one buffer that names it
+            return true;
+        }
     try {
         const std::string s = f->options->read_file(path);
         out->assign(s.begin(), s.end());
@@ -96,7 +105,7 @@ bool keep_encoded(tinygltf::Image* image, const int, std::string*, std::string*,
 // The external files a .gltf names, checked before tinygltf reads them, so
 // that a missing buffer or image, or a URI that is not a relative path or a
 // base64 data URI, is reported by its glTF path.
-void check_uris(const std::string& text, const std::string& file, const LoadOptions& options) {
+void check_uris(const std::string& text, const std::string& file, const LoadOptions& options, gltf::DataUris& uris) {
     nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
     if (doc.is_discarded() || !doc.is_object()) return;  // tinygltf reports the syntax error
     const fs::path dir = fs::path(file).parent_path();
@@ -120,7 +129,7 @@ void check_uris(const std::string& text, const std::string& file, const LoadOpti
             const std::string name = percent_decode(uri, ok);
             if (!ok) fail("'" + uri.substr(0, 80) + "' has a bad %-escape");
             const std::string full = (dir / name).lexically_normal().string();
-            Files f{&options, {}};
+            Files f{&options, {}, &uris};
             if (!fs_exists(full, &f)) fail(full + ": no such file");
         }
     }
@@ -151,14 +160,12 @@ std::vector<std::uint32_t> triangle_corners(const Source& src, const tinygltf::P
     std::vector<std::uint32_t> idx;
     if (p.indices >= 0) {
         const View v = gltf::view(src, p.indices, path + ".indices", TINYGLTF_TYPE_SCALAR, -1, {kUByte, kUShort, kUInt}, true);
-        idx.resize(v.count);
-        for (std::size_t i = 0; i < v.count; ++i) {
-            idx[i] = v.index(i);
-            if (idx[i] >= vertex_count)
-                src.fail(path + ".indices", "index " + std::to_string(idx[i]) + " at position " + std::to_string(i) +
-                                                " is out of range (the primitive has " + std::to_string(vertex_count) +
-                                                " vertices)");
-        }
+        idx = v.indices();
+        const auto bad = std::find_if(idx.begin(), idx.end(), [&](std::uint32_t i) { return i >= vertex_count; });
+        if (bad != idx.end())
+            src.fail(path + ".indices", "index " + std::to_string(*bad) + " at position " +
+                                            std::to_string(bad - idx.begin()) + " is out of range (the primitive has " +
+                                            std::to_string(vertex_count) + " vertices)");
     } else {
         idx.resize(vertex_count);
         for (std::size_t i = 0; i < vertex_count; ++i) idx[i] = std::uint32_t(i);
@@ -186,6 +193,15 @@ std::vector<std::uint32_t> triangle_corners(const Source& src, const tinygltf::P
         return {};  // skipped, as an OBJ's lines are; read_primitive warns
     default: src.fail(path + ".mode", "unknown primitive mode " + std::to_string(mode));
     }
+}
+
+// out[c] = element corners[c] of `values` (rows of T's float components).
+template <class T>
+void gather(const std::vector<float>& values, const std::vector<std::uint32_t>& corners, std::vector<T>& out) {
+    static_assert(sizeof(T) == T::length() * sizeof(float));
+    out.resize(corners.size());
+    const std::size_t n = std::size_t(T::length());
+    for (std::size_t c = 0; c < corners.size(); ++c) std::memcpy(&out[c], values.data() + corners[c] * n, sizeof(T));
 }
 
 GltfPrimitive read_primitive(const Source& src, const tinygltf::Primitive& p, const std::string& path) {
@@ -225,20 +241,12 @@ GltfPrimitive read_primitive(const Source& src, const tinygltf::Primitive& p, co
         const std::size_t listed = p.indices >= 0 ? src.model.accessors[std::size_t(p.indices)].count : n;
         if (listed % 3) out.warning = gltf::incomplete_triangle_warning(src.file, path, listed);
     }
-    const std::size_t m = corners.size();
-    out.vertices.resize(m);
-    if (nrm) out.normals.resize(m);
-    if (tan) out.tangents.resize(m);
-    if (uv) out.uvs.resize(m);
-    if (col) out.colors.resize(m);
-    for (std::size_t c = 0; c < m; ++c) {
-        const std::size_t i = corners[c];
-        out.vertices[c] = {pos.get(i, 0), pos.get(i, 1), pos.get(i, 2)};
-        if (nrm) out.normals[c] = {nrm->get(i, 0), nrm->get(i, 1), nrm->get(i, 2)};
-        if (tan) out.tangents[c] = {tan->get(i, 0), tan->get(i, 1), tan->get(i, 2), tan->get(i, 3)};
-        if (uv) out.uvs[c] = {uv->get(i, 0), uv->get(i, 1)};
-        if (col) out.colors[c] = {col->get(i, 0), col->get(i, 1), col->get(i, 2), col->components == 4 ? col->get(i, 3) : 1.0f};
-    }
+    // Each attribute decoded once per vertex, then gathered per corner.
+    gather(pos.floats(3), corners, out.vertices);
+    if (nrm) gather(nrm->floats(3), corners, out.normals);
+    if (tan) gather(tan->floats(4), corners, out.tangents);
+    if (uv) gather(uv->floats(2), corners, out.uvs);
+    if (col) gather(col->floats(4, 1.0f), corners, out.colors);  // RGB gets alpha 1
     return out;
 }
 
@@ -328,10 +336,12 @@ GltfModel load_gltf(const std::string& file, const LoadOptions& options) {
 namespace {
 GltfModel read_gltf(const std::string& bytes, const std::string& file, const LoadOptions& options) {
     const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
-    if (!binary) check_uris(bytes, file, options);
+    gltf::DataUris data_uris;
+    const std::string text = binary ? std::string() : gltf::extract_data_uris(bytes, data_uris);
+    if (!binary) check_uris(text, file, options, data_uris);
 
     tinygltf::TinyGLTF loader;
-    Files files{&options, {}};
+    Files files{&options, {}, &data_uris};
     loader.SetFsCallbacks({fs_exists, fs_expand, fs_read, fs_write, &files});
     loader.SetImageLoader(keep_encoded, nullptr);
     tinygltf::Model model;
@@ -340,7 +350,7 @@ GltfModel read_gltf(const std::string& bytes, const std::string& file, const Loa
     if (bytes.size() > 0xffffffffu) throw Error(file + ": larger than 4 GiB");
     const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
                                                          unsigned(bytes.size()), dir)
-                           : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), dir);
+                           : loader.LoadASCIIFromString(&model, &err, &warn, text.data(), unsigned(text.size()), dir);
     if (!ok || !err.empty()) {
         std::string what = err.empty() ? warn : err;
         while (!what.empty() && std::isspace(static_cast<unsigned char>(what.back()))) what.pop_back();
@@ -444,7 +454,7 @@ GltfModel read_gltf(const std::string& bytes, const std::string& file, const Loa
             for (std::size_t i = 0; i < model.cameras.size(); ++i)
                 names += (names.empty() ? "" : ", ") + std::to_string(i) +
                          (model.cameras[i].name.empty() ? "" : " '" + model.cameras[i].name + "'");
-            throw Error(file + ": no camera '" + want + "' placed by a node" +
+            throw UnknownGltfCamera(file + ": no camera '" + want + "' placed by a node" +
                         (names.empty() ? " (the file has no cameras)" : " (cameras: " + names + ")"));
         }
         out.camera = read_camera(src, found->camera, found->world, found->node);

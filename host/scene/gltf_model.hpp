@@ -12,6 +12,7 @@
 
 #include "scene/load_options.hpp"
 #include "scene/scene.hpp"
+#include "util/error.hpp"
 
 namespace clpath {
 
@@ -37,7 +38,7 @@ struct GltfInstance {
 
 struct GltfMaterial {
     std::string name;
-    Material material;  // CLP_MAT_GLTF; texture slots index GltfModel::textures
+    SceneMaterial material;  // CLP_MAT_GLTF; texture slots index GltfModel::textures
 };
 
 struct GltfModel {
@@ -49,6 +50,13 @@ struct GltfModel {
     std::optional<Camera> camera;       // the chosen perspective camera, placed
     std::vector<std::string> warnings;
     std::size_t triangle_count() const;
+};
+
+// options.gltf_camera names no camera that the file's nodes place: the
+// message lists the cameras there are. Its own type so that a program can
+// tell the user which of its options was wrong.
+struct UnknownGltfCamera : Error {
+    using Error::Error;
 };
 
 // Reads `file` through options.read_file (and the files it names relative to

@@ -29,7 +29,7 @@ void add_gltf(Scene& scene, SceneBuilder& builder, const GltfModel& model, const
             textures_added = true;
         }
         // The specification's default material: white, fully metallic, fully rough.
-        Material m = gm < 0 ? gltf_material(glm::vec3(1), 1, 1) : model.materials[std::size_t(gm)].material;
+        SceneMaterial m = gm < 0 ? gltf_material(glm::vec3(1), 1, 1) : model.materials[std::size_t(gm)].material;
         for (int& t : m.texture)
             if (t != CLP_NO_TEXTURE) t += texture_base;
         std::string name = file + ":" + (gm < 0 ? "(default)" : model.materials[std::size_t(gm)].name);

@@ -241,7 +241,7 @@ glm::vec3 vec(const tinyobj::real_t* v) { return {float(v[0]), float(v[1]), floa
 // rules. The kind is chosen first; a value out of range is an error on a
 // channel that kind reads, and a warning (the value ignored) on one it does
 // not, as other tools read such files (Ni 0 on an opaque material).
-Material from_mtl(const tinyobj::material_t& m, const std::string& mtl_file, std::vector<std::string>& warnings) {
+SceneMaterial from_mtl(const tinyobj::material_t& m, const std::string& mtl_file, std::vector<std::string>& warnings) {
     const std::string where = mtl_file + ": material '" + m.name + "': ";
     const int illum = m.illum;
     // What decides the kind is always read, so always checked.
@@ -291,7 +291,7 @@ Material from_mtl(const tinyobj::material_t& m, const std::string& mtl_file, std
                     tf = tf_ok ? vec(m.transmittance) : glm::vec3(0);
     const bool has_ks = ks.x > 0 || ks.y > 0 || ks.z > 0;
 
-    Material out;
+    SceneMaterial out;
     switch (kind) {
     case Kind::Dielectric: {
         // Ni 1 is the MTL default, and a glass of index 1 would be invisible.
@@ -412,7 +412,7 @@ ObjMesh parse_obj(const std::string& raw_text, const std::string& file, const Re
                 float rough = float(m.roughness);
                 if (rough == 0) rough = m.shininess > 1 && m.shininess < 1000 ? float(std::pow(2.0 / (m.shininess + 2.0), 0.25)) : 1.0f;
                 const glm::vec3 base = om.diffuse_texture.empty() ? vec(m.diffuse) : glm::vec3(1);
-                Material g = gltf_material(base, float(m.metallic), rough);
+                SceneMaterial g = gltf_material(base, float(m.metallic), rough);
                 for (int i = 0; i < 3; ++i) g.emission[i] = om.material.emission[i];
                 if (!om.alpha_texture.empty()) g.alpha_mode = CLP_ALPHA_MASK;
                 om.material = g;

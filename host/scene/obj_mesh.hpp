@@ -22,7 +22,7 @@ struct ObjMaterial {
     std::string name;
     bool defined = false;  // false: named by usemtl but by no .mtl file
     int usemtl_line = 0;   // the first usemtl naming it, for messages
-    Material material{};   // from the .mtl, when defined (docs/scene-format.md has the mapping)
+    SceneMaterial material{};  // from the .mtl, when defined (docs/scene-format.md has the mapping)
     // map_Kd and map_d, resolved against the .mtl's folder; empty: none. A
     // material with either is the glTF material (CLP_MAT_GLTF) and its
     // texture slot is filled in by the scene that loads the images.

@@ -26,8 +26,8 @@ TextureImage load(const std::string& path, const std::string& material, const Lo
 }
 }  // namespace
 
-Material obj_material_with_textures(Scene& scene, const ObjMaterial& om, const LoadOptions& options) {
-    Material m = om.material;
+SceneMaterial obj_material_with_textures(Scene& scene, const ObjMaterial& om, const LoadOptions& options) {
+    SceneMaterial m = om.material;
     if (om.diffuse_texture.empty() && om.alpha_texture.empty()) return m;
     TextureImage base;
     if (!om.diffuse_texture.empty()) base = load(om.diffuse_texture, om.name, options);

@@ -11,6 +11,6 @@ namespace clpath {
 // om.material with its base texture slot set, the texture appended to
 // scene.textures; om.material unchanged when it maps nothing. Throws
 // clpath::Error naming the .mtl's image that is missing or undecodable.
-Material obj_material_with_textures(Scene& scene, const ObjMaterial& om, const LoadOptions& options);
+SceneMaterial obj_material_with_textures(Scene& scene, const ObjMaterial& om, const LoadOptions& options);
 
 }  // namespace clpath

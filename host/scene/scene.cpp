@@ -31,7 +31,7 @@ CameraData camera_data(const Camera& c) {
     return d;
 }
 
-std::uint32_t Scene::add_material(const std::string& name, const Material& m) {
+std::uint32_t Scene::add_material(const std::string& name, const SceneMaterial& m) {
     for (const auto& n : material_names)
         if (n == name) throw Error("material '" + name + "' defined twice");
     materials.push_back(m);
@@ -58,8 +58,8 @@ bool Scene::has_emitter() const {
     return false;
 }
 
-Material base_material() {
-    Material m{};
+SceneMaterial base_material() {
+    SceneMaterial m{};
     for (int& t : m.texture) t = CLP_NO_TEXTURE;
     m.alpha = 1;
     m.alpha_cutoff = 0.5f;
@@ -68,8 +68,8 @@ Material base_material() {
     return m;
 }
 
-Material gltf_material(glm::vec3 base_color, float metallic, float roughness) {
-    Material m = base_material();
+SceneMaterial gltf_material(glm::vec3 base_color, float metallic, float roughness) {
+    SceneMaterial m = base_material();
     m.kind = CLP_MAT_GLTF;
     store3(m.albedo, base_color);
     m.metallic = metallic;
@@ -77,30 +77,30 @@ Material gltf_material(glm::vec3 base_color, float metallic, float roughness) {
     return m;
 }
 
-Material diffuse(glm::vec3 albedo) {
-    Material m = base_material();
+SceneMaterial diffuse(glm::vec3 albedo) {
+    SceneMaterial m = base_material();
     m.kind = CLP_MAT_DIFFUSE;
     store3(m.albedo, albedo);
     return m;
 }
 
-Material mirror(glm::vec3 tint) {
-    Material m = base_material();
+SceneMaterial mirror(glm::vec3 tint) {
+    SceneMaterial m = base_material();
     m.kind = CLP_MAT_MIRROR;
     store3(m.albedo, tint);
     return m;
 }
 
-Material conductor(glm::vec3 f0, float roughness) {
-    Material m = base_material();
+SceneMaterial conductor(glm::vec3 f0, float roughness) {
+    SceneMaterial m = base_material();
     m.kind = CLP_MAT_CONDUCTOR;
     store3(m.albedo, f0);
     m.roughness = roughness;
     return m;
 }
 
-Material dielectric(float ior, float roughness, glm::vec3 tint) {
-    Material m = base_material();
+SceneMaterial dielectric(float ior, float roughness, glm::vec3 tint) {
+    SceneMaterial m = base_material();
     m.kind = CLP_MAT_DIELECTRIC;
     store3(m.albedo, tint);
     m.ior = ior;
@@ -108,8 +108,8 @@ Material dielectric(float ior, float roughness, glm::vec3 tint) {
     return m;
 }
 
-Material emitter(glm::vec3 radiance, bool two_sided, glm::vec3 albedo) {
-    Material m = base_material();
+SceneMaterial emitter(glm::vec3 radiance, bool two_sided, glm::vec3 albedo) {
+    SceneMaterial m = base_material();
     m.kind = CLP_MAT_DIFFUSE;
     store3(m.emission, radiance);
     store3(m.albedo, albedo);

@@ -69,6 +69,13 @@ struct Texture {
     std::size_t texel_bytes() const { return is_float ? rgba32.size() * sizeof(float) : rgba8.size(); }
 };
 
+// A material as a scene holds it: the record every kernel reads (Material)
+// and its texture maps and coverage (MaterialExt), which only kernels with
+// textures or alpha cut-outs read. The renderer uploads the two parts as two
+// buffers (render/prepared_scene.hpp), so scenes without those features keep
+// the material table they had before them.
+struct SceneMaterial : Material, MaterialExt {};
+
 struct Scene {
     std::string name;
     // Three vertices per triangle; a triangle's front face is the side from
@@ -78,7 +85,7 @@ struct Scene {
     // The object (shape or mesh, as the scene defines it) of each triangle, one
     // per triangle: the flat acceleration structure boxes each object (bvh/flat.hpp).
     std::vector<std::uint32_t> triangle_object;
-    std::vector<Material> materials;
+    std::vector<SceneMaterial> materials;
     std::vector<std::string> material_names;  // parallel to materials
     // Empty (flat shading), or three per triangle, parallel to vertices.
     std::vector<glm::vec3> normals;
@@ -89,7 +96,7 @@ struct Scene {
     std::vector<glm::vec2> uvs;
     std::vector<glm::vec4> tangents;
     std::vector<glm::vec4> colors;
-    std::vector<Texture> textures;  // Material::texture indexes these
+    std::vector<Texture> textures;  // MaterialExt::texture indexes these
     std::vector<PunctualLight> lights;
     Environment environment;
     Camera camera;
@@ -100,7 +107,7 @@ struct Scene {
 
     std::size_t triangle_count() const { return triangle_material.size(); }
     // Adds a material and returns its index; names must be unique.
-    std::uint32_t add_material(const std::string& name, const Material& m);
+    std::uint32_t add_material(const std::string& name, const SceneMaterial& m);
     // Appends triangles (3 vertices each) with one material, as a new object.
     void add_triangles(const std::vector<glm::vec3>& tris, std::uint32_t material);
     // The id the next object gets (ids are consecutive from 0).
@@ -121,14 +128,14 @@ inline glm::vec3 load3(const float* p) { return {p[0], p[1], p[2]}; }
 inline bool emits(const Material& m) { return m.emission[0] > 0 || m.emission[1] > 0 || m.emission[2] > 0; }
 
 // Every field at its neutral value: no textures, opaque, ior 1.5.
-Material base_material();
+SceneMaterial base_material();
 // The glTF metallic-roughness material (CLP_MAT_GLTF) without textures.
-Material gltf_material(glm::vec3 base_color, float metallic, float roughness);
-Material diffuse(glm::vec3 albedo);
-Material mirror(glm::vec3 tint = glm::vec3(1));
-Material conductor(glm::vec3 f0, float roughness);
-Material dielectric(float ior, float roughness = 0, glm::vec3 tint = glm::vec3(1));
+SceneMaterial gltf_material(glm::vec3 base_color, float metallic, float roughness);
+SceneMaterial diffuse(glm::vec3 albedo);
+SceneMaterial mirror(glm::vec3 tint = glm::vec3(1));
+SceneMaterial conductor(glm::vec3 f0, float roughness);
+SceneMaterial dielectric(float ior, float roughness = 0, glm::vec3 tint = glm::vec3(1));
 // A one-sided emitter unless two_sided; albedo 0: it does not reflect.
-Material emitter(glm::vec3 radiance, bool two_sided = false, glm::vec3 albedo = glm::vec3(0));
+SceneMaterial emitter(glm::vec3 radiance, bool two_sided = false, glm::vec3 albedo = glm::vec3(0));
 
 }  // namespace clpath

@@ -108,16 +108,16 @@ void SceneBuilder::add(const std::vector<glm::vec3>& vertices, const std::vector
             }
         }
         if (!with_normals_) continue;
-        const glm::vec3 flat = flat_normal(p[0], p[c1], p[c2]);
-        glm::vec3 out[3] = {flat, flat, flat};
+        // The flat normal only where no usable smooth one is given (it costs a square root per triangle).
+        glm::vec3 out[3];
+        bool ok = smooth;
         if (smooth) {
-            bool ok = true;
             glm::vec3 sn[3];
-            for (int c = 0; c < 3; ++c) {
+            for (int c = 0; c < 3 && ok; ++c) {
                 const glm::vec3 v = normal_m * normals[3 * t + c];
                 const float len = glm::length(v);
-                ok = ok && len > 0 && std::isfinite(len);
-                sn[c] = ok ? v / len : flat;
+                ok = len > 0 && std::isfinite(len);
+                sn[c] = v / len;
             }
             if (ok) {
                 out[0] = sn[0];
@@ -125,6 +125,7 @@ void SceneBuilder::add(const std::vector<glm::vec3>& vertices, const std::vector
                 out[2] = sn[c2];
             }
         }
+        if (!ok) out[0] = out[1] = out[2] = flat_normal(p[0], p[c1], p[c2]);
         scene_.normals.insert(scene_.normals.end(), {out[0], out[1], out[2]});
     }
     if (dropped) {

@@ -92,7 +92,7 @@ void read_render(Object o, SceneRenderDefaults& r) {
     o.finish();
 }
 
-Material read_material(Object o) {
+SceneMaterial read_material(Object o) {
     const Value type_v = o.require("type");
     std::string type = type_v.string();
     // Aliases the thesis text uses.
@@ -106,7 +106,7 @@ Material read_material(Object o) {
     if (type == "conductor" || type == "dielectric") roughness = o.get("roughness");
     if (type == "dielectric") ior = o.get("ior");
 
-    Material m;
+    SceneMaterial m;
     const glm::vec3 c = color ? color->color(jsonf::kUnit) : glm::vec3(type == "diffuse" ? 0.8f : type == "emitter" ? 0.0f : 1.0f);
     const float rough = roughness ? roughness->real(jsonf::kUnit) : 0.0f;
     if (type == "diffuse") {
@@ -233,7 +233,7 @@ private:
     }
 
     // A material for the mesh's own, added once per name however often the mesh is used.
-    std::uint32_t mesh_material(const std::string& name, const Material& m) {
+    std::uint32_t mesh_material(const std::string& name, const SceneMaterial& m) {
         auto it = material_index_.find(name);
         if (it != material_index_.end()) return it->second;
         return material_index_[name] = scene_.add_material(name, m);

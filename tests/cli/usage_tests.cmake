@@ -136,6 +136,38 @@ clpath_usage_test(gltf_has_sky_and_sun RC 0 ARGS render ${SUZANNE} ${SMALL} -o $
 clpath_usage_test(camera_on_gltf RC 0 ARGS render ${SUZANNE} ${SMALL} --camera from=0,0,-9
                   -o ${USAGE_OUT}/cam-gltf.pfm OUTPUT "summary: ")
 
+# --- --gltf-camera: a glTF file's camera by name or index -------------------------------------
+# two-cameras.gltf: camera 0 'front' faces the square, camera 1 'side' sees it edge-on.
+set(TWO_CAMERAS ${CLI_DATA}/two-cameras.gltf)
+file(REMOVE ${USAGE_OUT}/gltf-cam-name.pfm ${USAGE_OUT}/gltf-cam-index.pfm)
+clpath_usage_test(gltf_camera_by_name RC 0 ARGS render ${TWO_CAMERAS} ${SMALL} --gltf-camera side
+                  -o ${USAGE_OUT}/gltf-cam-name.pfm MAKES ${USAGE_OUT}/gltf-cam-name.pfm OUTPUT "summary: .*triangles=2 ")
+clpath_usage_test(gltf_camera_by_index RC 0 ARGS render ${TWO_CAMERAS} ${SMALL} --gltf-camera 1
+                  -o ${USAGE_OUT}/gltf-cam-index.pfm MAKES ${USAGE_OUT}/gltf-cam-index.pfm OUTPUT "summary: .*triangles=2 ")
+# The name and the index choose the same camera: the same image, bit for bit; the
+# control (the other camera) must differ, or the comparison could not tell.
+string(REPLACE ";" " " SMALL_TEXT "${SMALL}")
+set(GLTF_RENDER "$<TARGET_FILE:clpath> render ${TWO_CAMERAS} ${SMALL_TEXT} -q --gltf-camera")
+add_test(NAME cli.usage.gltf_camera_name_and_index_agree
+         COMMAND ${CMAKE_COMMAND}
+                 "-DCMDS=${GLTF_RENDER} side -o ${USAGE_OUT}/gc-side.pfm|${GLTF_RENDER} 1 -o ${USAGE_OUT}/gc-1.pfm"
+                 "-DOUTS=${USAGE_OUT}/gc-side.pfm;${USAGE_OUT}/gc-1.pfm" -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/same_image.cmake)
+add_test(NAME cli.usage.gltf_camera_control_other_camera_differs
+         COMMAND ${CMAKE_COMMAND}
+                 "-DCMDS=${GLTF_RENDER} front -o ${USAGE_OUT}/gc-front.pfm|${GLTF_RENDER} 1 -o ${USAGE_OUT}/gc-1b.pfm"
+                 "-DOUTS=${USAGE_OUT}/gc-front.pfm;${USAGE_OUT}/gc-1b.pfm" -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/same_image.cmake)
+set_tests_properties(cli.usage.gltf_camera_name_and_index_agree cli.usage.gltf_camera_control_other_camera_differs
+                     PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 300)
+# Passes only on the comparison's own failure message (a failed render would not print it).
+set_tests_properties(cli.usage.gltf_camera_control_other_camera_differs PROPERTIES PASS_REGULAR_EXPRESSION
+                     "gc-1b\\.pfm differs from")
+clpath_usage_test(gltf_camera_unknown_name RC 2 ARGS render ${TWO_CAMERAS} ${SMALL} --gltf-camera top
+                  -o ${USAGE_OUT}/gltf-cam-top.pfm FORBID ${USAGE_OUT}/gltf-cam-top.pfm
+                  OUTPUT "^clpath: error: --gltf-camera: .*two-cameras\\.gltf: no camera 'top' placed by a node \\(cameras: 0 'front', 1 'side'\\)")
+clpath_usage_test(gltf_camera_index_out_of_range RC 2 ARGS render ${TWO_CAMERAS} ${SMALL} --gltf-camera 2
+                  -o ${USAGE_OUT}/gltf-cam-2.pfm FORBID ${USAGE_OUT}/gltf-cam-2.pfm
+                  OUTPUT "^clpath: error: --gltf-camera: .*two-cameras\\.gltf: no camera '2' placed by a node \\(cameras: 0 'front', 1 'side'\\)")
+
 # --- export ---------------------------------------------------------------------------------
 file(REMOVE_RECURSE ${USAGE_OUT}/export-made)
 clpath_usage_test(export_creates_folder RC 0 ARGS export cornell ${USAGE_OUT}/export-made/deeper/c.json

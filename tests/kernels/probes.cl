@@ -206,6 +206,7 @@ kernel void probe_texture(global const TextureDesc* desc, global const uint* tex
     sd.desc = desc;
     sd.texels = texels;
     sd.attrs = 0;
+    sd.material_ext = 0;
     sd.attr_stride = 0;
     sd.flags = 0;
     out[i] = texture_sample(&sd, index, uv[i], srgb);

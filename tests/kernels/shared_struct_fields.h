@@ -6,7 +6,7 @@
 #define CLP_SHARED_STRUCT_FIELDS_H
 
 #define CLP_SHARED_STRUCTS(S) \
-    S(BvhNode) S(Bvh4Node) S(TriVerts) S(Material) S(Light) S(AliasEntry) S(CameraData) S(FrameParams) S(Counters) \
+    S(BvhNode) S(Bvh4Node) S(TriVerts) S(Material) S(MaterialExt) S(Light) S(AliasEntry) S(CameraData) S(FrameParams) S(Counters) \
     S(AccumPixel) S(BatchRay) S(Hit) S(TextureDesc)
 
 #define CLP_SHARED_FIELDS(F) \
@@ -16,8 +16,9 @@
     F(Bvh4Node, child) F(Bvh4Node, count) \
     F(TriVerts, v0) F(TriVerts, prim) F(TriVerts, v1) F(TriVerts, light) F(TriVerts, v2) F(TriVerts, pad2) \
     F(Material, albedo) F(Material, kind) F(Material, emission) F(Material, flags) F(Material, roughness) \
-    F(Material, ior) F(Material, metallic) F(Material, alpha) F(Material, texture) F(Material, alpha_mode) \
-    F(Material, alpha_cutoff) F(Material, normal_scale) F(Material, pad0) \
+    F(Material, ior) F(Material, metallic) F(Material, pad0) \
+    F(MaterialExt, texture) F(MaterialExt, alpha) F(MaterialExt, alpha_mode) F(MaterialExt, alpha_cutoff) \
+    F(MaterialExt, normal_scale) \
     F(Light, a) F(Light, type) F(Light, b) F(Light, flags) F(Light, c) F(Light, cos_outer) F(Light, L) \
     F(Light, cos_inner) \
     F(AliasEntry, prob) F(AliasEntry, alias) F(AliasEntry, pmf) F(AliasEntry, pad) \

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "render/device_scene.hpp"
+#include "render/prepared_scene.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_loader.hpp"
 #include "support/render_helpers.hpp"
@@ -42,8 +44,8 @@ void add_square(Scene& s, glm::vec3 c, glm::vec3 a, glm::vec3 b, std::uint32_t m
     builder.add(v, {}, glm::mat4(1), {material}, "square", attr);
 }
 
-Material cutout_material(std::uint32_t mode) {
-    Material m = gltf_material(glm::vec3(1), 1.0f, 0.5f);  // times the black texture: black metal
+SceneMaterial cutout_material(std::uint32_t mode) {
+    SceneMaterial m = gltf_material(glm::vec3(1), 1.0f, 0.5f);  // times the black texture: black metal
     m.texture[CLP_TEX_BASE] = 0;
     m.alpha_mode = mode;
     return m;
@@ -169,4 +171,37 @@ TEST(GltfRender, SuzanneShowsItsBaseColourTexture) {
     ASSERT_GT(on_model, 100);  // the model covers about a tenth of the frame
     EXPECT_LT(mean_r / on_model, 0.9) << "not the untextured white";
     EXPECT_NE(mean_r, mean_b) << "coloured";
+}
+
+// Texture slots and coverage live in their own buffer, filled only for a
+// scene whose kernels read them: a scene without textures or alpha keeps the
+// material table (and the device memory) it had before those features, with
+// one zero record in place of the extensions.
+TEST(GltfRender, MaterialExtensionsOnlyForScenesWithTexturesOrAlpha) {
+    const auto needs = [](const PreparedScene& p) {
+        for (const auto& [what, bytes] : DeviceScene::memory_needs(p))
+            if (what == "material extensions") return bytes;
+        ADD_FAILURE() << "no material extensions entry";
+        return std::size_t(0);
+    };
+    const auto plain = prepare_scene(test::small_cornell(8, 8), RenderSettings{});
+    EXPECT_TRUE(plain->material_ext.empty());
+    EXPECT_EQ(plain->summary.surface_flags & CLP_SCENE_MATERIAL_EXT, 0u);
+    EXPECT_EQ(needs(*plain), sizeof(MaterialExt));
+
+    const Scene suzanne = load_scene(scenes_dir() + "/suzanne/Suzanne.gltf");
+    const auto textured = prepare_scene(suzanne, RenderSettings{});
+    ASSERT_EQ(textured->material_ext.size(), suzanne.materials.size());
+    EXPECT_NE(textured->summary.surface_flags & CLP_SCENE_MATERIAL_EXT, 0u);
+    EXPECT_EQ(needs(*textured), suzanne.materials.size() * sizeof(MaterialExt));
+    for (std::size_t i = 0; i < suzanne.materials.size(); ++i)
+        for (int t = 0; t < 4; ++t) EXPECT_EQ(textured->material_ext[i].texture[t], suzanne.materials[i].texture[t]);
+
+    // Alpha alone (a MASK material without a texture) needs them too: traversal reads the cutoff.
+    Scene cut;
+    SceneMaterial m = gltf_material(glm::vec3(1), 0, 1);
+    m.alpha_mode = CLP_ALPHA_MASK;
+    add_square(cut, glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), cut.add_material("mask", m), false);
+    cut.environment.color = glm::vec3(1);
+    EXPECT_EQ(prepare_scene(cut, RenderSettings{})->material_ext.size(), 1u);
 }

@@ -30,7 +30,7 @@ std::vector<Image> runs(const Scene& scene, const RenderSettings& st, std::uint3
 }
 
 // An object of one material under a constant white-ish sky.
-Scene sky_furnace(const Material& m, glm::vec3 le, bool camera_inside) {
+Scene sky_furnace(const SceneMaterial& m, glm::vec3 le, bool camera_inside) {
     Scene s;
     s.name = "sky-furnace";
     const auto id = s.add_material("object", m);
@@ -63,7 +63,7 @@ const double kZ = 3.89;
 // Albedo-1 diffuse and mirror surfaces, and glass, return exactly the sky's
 // radiance: every pixel's expectation is Le.
 TEST(LightTransport, FurnaceConservesEnergy) {
-    for (const Material& m : {diffuse(glm::vec3(1.0f)), mirror(glm::vec3(1.0f)), dielectric(1.5f)}) {
+    for (const SceneMaterial& m : {diffuse(glm::vec3(1.0f)), mirror(glm::vec3(1.0f)), dielectric(1.5f)}) {
         SCOPED_TRACE("material kind " + std::to_string(m.kind));
         for (auto integrator : test::kLightTransportIntegrators)
             test::expect_sky_furnace(sky_furnace(m, kSky, false), 1.0, integrator, 5);

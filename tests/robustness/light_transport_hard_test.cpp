@@ -99,7 +99,7 @@ TEST(LightTransportHard, TinyBrightLight) {
 
 namespace {
 // An object in a constant sky (a furnace): every path that leaves reaches Le.
-Scene sky_with(const std::vector<std::pair<std::vector<glm::vec3>, Material>>& parts, glm::vec3 eye) {
+Scene sky_with(const std::vector<std::pair<std::vector<glm::vec3>, SceneMaterial>>& parts, glm::vec3 eye) {
     Scene s;
     s.name = "sky";
     int i = 0;

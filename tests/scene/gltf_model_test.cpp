@@ -63,7 +63,7 @@ TEST(Gltf, EmbeddedQuadLoadsWithNormalsAndTexcoords) {
     expect_near(s.normals[0], {0, 0, 1});
     EXPECT_EQ(s.uvs[2], glm::vec2(1, 0));
     // No material: the specification's default, a white rough metal.
-    const Material& m = s.materials[s.triangle_material[0]];
+    const SceneMaterial& m = s.materials[s.triangle_material[0]];
     EXPECT_EQ(m.kind, CLP_MAT_GLTF);
     EXPECT_EQ(m.metallic, 1.0f);
     EXPECT_EQ(m.roughness, 1.0f);
@@ -79,6 +79,39 @@ TEST(Gltf, ExternalBufferAndGlbGiveTheSameTriangles) {
     const Scene a = f.load("m/quad.gltf"), b = f.load("m/quad.glb");
     ASSERT_EQ(a.vertices.size(), b.vertices.size());
     for (std::size_t i = 0; i < a.vertices.size(); ++i) EXPECT_EQ(a.vertices[i], b.vertices[i]);
+}
+
+// Buffer data URIs are decoded by the loader (gltf_data_uris.cpp), not by
+// tinygltf: the same triangles as the .glb, whatever the JSON writer did with
+// "/" (escaped "\/" is valid JSON and left to tinygltf), and a wrong
+// byteLength or bad base64 still fails with the buffer named.
+TEST(Gltf, DataUriBuffersGiveTheSameTrianglesAsGlb) {
+    GltfBuilder g = quad_model();
+    g.bin += std::string("\xff\xfe\xfd", 3);  // base64 with '/' and '+' in it, and padding
+    const std::string embedded = g.embedded();
+    ASSERT_NE(embedded.find('/', embedded.find("base64,")), std::string::npos);
+    std::string escaped;
+    for (char c : embedded) escaped += c == '/' ? std::string("\\/") : std::string(1, c);
+    Files f;
+    f.files["m/e.gltf"] = embedded;
+    f.files["m/x.gltf"] = escaped;
+    f.files["m/quad.glb"] = g.glb();
+    const Scene a = f.load("m/e.gltf"), b = f.load("m/x.gltf"), c = f.load("m/quad.glb");
+    ASSERT_EQ(a.vertices.size(), c.vertices.size());
+    ASSERT_EQ(b.vertices.size(), c.vertices.size());
+    for (std::size_t i = 0; i < a.vertices.size(); ++i) {
+        EXPECT_EQ(a.vertices[i], c.vertices[i]);
+        EXPECT_EQ(b.vertices[i], c.vertices[i]);
+        EXPECT_EQ(a.uvs[i], c.uvs[i]);
+    }
+    nlohmann::json wrong = nlohmann::json::parse(embedded);
+    wrong["buffers"][0]["byteLength"] = g.bin.size() + 4;
+    const std::string e1 = with("w.gltf", wrong.dump()).error("w.gltf");
+    EXPECT_NE(e1.find("w.gltf: not a valid glTF 2.0 file"), std::string::npos) << e1;
+    wrong["buffers"][0]["byteLength"] = g.bin.size();
+    wrong["buffers"][0]["uri"] = "data:application/octet-stream;base64,@@@@";
+    const std::string e2 = with("w.gltf", wrong.dump()).error("w.gltf");
+    EXPECT_NE(e2.find("w.gltf: not a valid glTF 2.0 file"), std::string::npos) << e2;
 }
 
 TEST(Gltf, NodeHierarchyComposesTrsAndMatrices) {
@@ -224,7 +257,7 @@ TEST(Gltf, MaterialsTexturesAndSamplers) {
     g.doc["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}}};
     g.doc["textures"] = {{{"source", 0}, {"sampler", 0}}};
     const Scene s = with("t.gltf", g.embedded()).load("t.gltf");
-    const Material& m = s.materials[s.triangle_material[0]];
+    const SceneMaterial& m = s.materials[s.triangle_material[0]];
     EXPECT_EQ(s.material_names[s.triangle_material[0]], "t.gltf:painted");
     EXPECT_EQ(m.kind, CLP_MAT_GLTF);
     EXPECT_FLOAT_EQ(m.albedo[0], 0.5f);
@@ -380,7 +413,7 @@ TEST(Gltf, SuzanneFromTheRepository) {
     ASSERT_EQ(s.textures.size(), 2u);
     EXPECT_EQ(s.textures[0].width, 256);
     EXPECT_FALSE(s.textures[0].is_float);
-    const Material& m = s.materials[s.triangle_material[0]];
+    const SceneMaterial& m = s.materials[s.triangle_material[0]];
     EXPECT_EQ(m.kind, CLP_MAT_GLTF);
     EXPECT_EQ(m.texture[CLP_TEX_BASE], 0);
     EXPECT_EQ(m.texture[CLP_TEX_MR], 1);

@@ -50,7 +50,7 @@ TEST(ObjTextures, DiffuseAndAlphaMapsBecomeOneTexture) {
     ASSERT_EQ(s.textures.size(), 1u);
     const Texture& t = s.textures[0];
     EXPECT_EQ(t.rgba8, (std::vector<std::uint8_t>{10, 10, 10, 0, 20, 20, 20, 255}));
-    const Material& m = s.materials[s.triangle_material[0]];
+    const SceneMaterial& m = s.materials[s.triangle_material[0]];
     EXPECT_EQ(m.kind, CLP_MAT_GLTF);
     EXPECT_EQ(m.texture[CLP_TEX_BASE], 0);
     EXPECT_EQ(m.alpha_mode, CLP_ALPHA_MASK);
