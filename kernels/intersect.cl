@@ -167,8 +167,9 @@ inline float intersect_box(const RayPre* r, float3 lo, float3 hi, float tmax) {
 }
 
 /* intersect_box for the four child boxes of a Bvh4Node at once, stored by
- * coordinate: lane by lane the very same operations in the same order, so
- * the same NaN repair and the same conservative widening hold for each. */
+ * coordinate: lane by lane the same slab distances, the same NaN repair and
+ * the same conservative widening, so the same boxes are entered at the same
+ * distances (min and max are taken by compare and select, see below). */
 inline float4 intersect_box4(const RayPre* r, float4 lo_x, float4 hi_x, float4 lo_y, float4 hi_y, float4 lo_z,
                              float4 hi_z, float tmax) {
     float4 t0x = (lo_x - r->org.x) * r->inv_dir.x, t1x = (hi_x - r->org.x) * r->inv_dir.x;
@@ -180,8 +181,21 @@ inline float4 intersect_box4(const RayPre* r, float4 lo_x, float4 hi_x, float4 l
     t1y = select(t1y, -t0y, isnan(t1y));
     t0z = select(t0z, -t1z, isnan(t0z));
     t1z = select(t1z, -t0z, isnan(t1z));
-    float4 tnear = fmax(fmax(fmin(t0x, t1x), fmin(t0y, t1y)), fmax(fmin(t0z, t1z), 0.0f));
-    float4 tfar = fmin(fmin(fmax(t0x, t1x), fmax(t0y, t1y)), fmin(fmax(t0z, t1z), tmax)) * (1.0f + 2.0f * CLP_GAMMA(5));
+    /* Comparisons and selects rather than fmin/fmax: the builtins' NaN rules
+     * cost a compare and a blend each on x86 (LLVM's minnum). A NaN left
+     * after the repair (flat box, origin in it) is in both t0 and t1 of its
+     * axis, so its near and far are NaN; CLP_MAX4/CLP_MIN4 return their
+     * second operand when the first is NaN, and the chains below put each
+     * axis first against a partial result that is never NaN (it starts from
+     * 0 and tmax), so that axis bounds nothing, as with fmin/fmax. */
+#define CLP_MIN4(a, b) select((b), (a), (a) < (b))
+#define CLP_MAX4(a, b) select((b), (a), (a) > (b))
+    float4 nx = CLP_MIN4(t0x, t1x), ny = CLP_MIN4(t0y, t1y), nz = CLP_MIN4(t0z, t1z);
+    float4 fx = CLP_MAX4(t0x, t1x), fy = CLP_MAX4(t0y, t1y), fz = CLP_MAX4(t0z, t1z);
+    float4 tnear = CLP_MAX4(nx, CLP_MAX4(ny, CLP_MAX4(nz, (float4)(0.0f))));
+    float4 tfar = CLP_MIN4(fx, CLP_MIN4(fy, CLP_MIN4(fz, (float4)(tmax)))) * (1.0f + 2.0f * CLP_GAMMA(5));
+#undef CLP_MIN4
+#undef CLP_MAX4
     return select((float4)(INFINITY), tnear, tnear <= tfar);
 }
 
