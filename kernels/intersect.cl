@@ -17,15 +17,11 @@ typedef struct {
     float3 org;
     float3 dir;
     float3 inv_dir; /* 1/dir: +-infinity for +-0 components, as the slab test needs */
-    float3 porg;    /* origin with axes permuted to (kx, ky, kz) */
     float sx, sy, sz;
     int kx, ky, kz;
 } RayPre;
 
 inline float axis_of(float3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
-inline float3 permute3(float3 v, int kx, int ky, int kz) {
-    return (float3)(axis_of(v, kx), axis_of(v, ky), axis_of(v, kz));
-}
 
 inline RayPre ray_prepare(float3 o, float3 d) {
     RayPre r;
@@ -50,7 +46,6 @@ inline RayPre ray_prepare(float3 o, float3 d) {
     r.sx = axis_of(d, kx) / dz;
     r.sy = axis_of(d, ky) / dz;
     r.sz = 1.0f / dz;
-    r.porg = permute3(o, kx, ky, kz);
     return r;
 }
 
@@ -79,14 +74,22 @@ inline int origin_clearly_in_front(const RayPre* r, float3 v0, float3 v1, float3
 
 /* Watertight ray/triangle test. On a hit in (0, tmax) returns 1 and writes t and
  * the barycentric weights (b1, b2) of v1 and v2. */
-inline int intersect_triangle(const RayPre* r, float3 v0, float3 v1, float3 v2, float tmax, float* t_out,
-                              float* b1_out, float* b2_out) {
+__attribute__((always_inline)) inline int intersect_triangle(const RayPre* r, float3 v0, float3 v1, float3 v2,
+                                                             float tmax, float* t_out, float* b1_out, float* b2_out) {
     /* Fused multiply-adds would round the two triangles sharing an edge
      * differently, and a ray could then miss both (Woop et al., section 4). */
 #pragma OPENCL FP_CONTRACT OFF
-    float3 A = permute3(v0, r->kx, r->ky, r->kz) - r->porg;
-    float3 B = permute3(v1, r->kx, r->ky, r->kz) - r->porg;
-    float3 C = permute3(v2, r->kx, r->ky, r->kz) - r->porg;
+    /* v - o, then permuted: the same values as permuting both first
+     * (subtraction is per component). The permutation is an indexed read of
+     * a private array, a store and three loads, where picking each component
+     * by comparing k took two compares and two selects. */
+    float va[3], vb[3], vc[3];
+    vstore3(v0 - r->org, 0, va);
+    vstore3(v1 - r->org, 0, vb);
+    vstore3(v2 - r->org, 0, vc);
+    float3 A = (float3)(va[r->kx], va[r->ky], va[r->kz]);
+    float3 B = (float3)(vb[r->kx], vb[r->ky], vb[r->kz]);
+    float3 C = (float3)(vc[r->kx], vc[r->ky], vc[r->kz]);
     float sxaz = r->sx * A.z, syaz = r->sy * A.z;
     float sxbz = r->sx * B.z, sybz = r->sy * B.z;
     float sxcz = r->sx * C.z, sycz = r->sy * C.z;
