@@ -120,8 +120,14 @@ typedef struct {
 /* Triangle lights are sampled uniformly in the solid angle they subtend at the
  * shading point (Arvo 1995), which removes the 1/r^2 and light-cosine factors
  * from the estimate: what makes area sampling noisy next to a light. Points
- * are sampled uniformly in area instead where that is as good and the
+ * are sampled uniformly in area instead where that is as good, or the
  * spherical construction is unreliable in float:
+ * - the triangle is small for its distance (area below CLP_MIN_SPHERICAL_SPREAD
+ *   times the squared distance to the nearest vertex, a test without square
+ *   roots): 1/r^2 and the cosines then vary little over it, and solid-angle
+ *   sampling's atan2, sincos and dozen square roots cost more than the
+ *   variance they remove (cornell-classic: the same error with 0.1, in less
+ *   time; benchmarks/results/pocl-xeon-2core/kernel-speed);
  * - the triangle subtends very little, or nearly a hemisphere (pbrt-v4's
  *   Triangle::Sample thresholds);
  * - p lies near the triangle's plane (height over the plane below a tenth of
@@ -134,11 +140,13 @@ typedef struct {
  * (CLP_*_SPHERICAL_*) are in shared_structs.h, where the host's tests read them. */
 
 /* The solid angle of light triangle (a, b, c) at p when it is sampled by solid
- * angle, else 0; n is the triangle's unit normal. The unit directions towards
+ * angle, else 0; n is the triangle's unit normal and area2 twice its area. The unit directions towards
  * the vertices go to *ua, *ub, *uc, for the sampling to reuse. */
-inline float triangle_solid_angle_dirs(float3 a, float3 b, float3 c, float3 n, float3 p, float3* ua, float3* ub,
-                                       float3* uc) {
+inline float triangle_solid_angle_dirs(float3 a, float3 b, float3 c, float3 n, float area2, float3 p, float3* ua,
+                                       float3* ub, float3* uc) {
     float3 da = a - p, db = b - p, dc = c - p;
+    float d2 = fmin(dot(da, da), fmin(dot(db, db), dot(dc, dc)));
+    if (!(0.5f * area2 >= CLP_MIN_SPHERICAL_SPREAD * d2)) return 0.0f;
     float la = length(da), lb = length(db), lc = length(dc);
     if (!(la > 0.0f && lb > 0.0f && lc > 0.0f)) return 0.0f;
     if (!(fabs(dot(n, da)) >= CLP_MIN_SPHERICAL_ELEVATION * fmin(la, fmin(lb, lc)))) return 0.0f;
@@ -149,10 +157,9 @@ inline float triangle_solid_angle_dirs(float3 a, float3 b, float3 c, float3 n, f
     return (omega >= CLP_MIN_SPHERICAL_AREA && omega <= CLP_MAX_SPHERICAL_AREA) ? omega : 0.0f;
 }
 
-/* The same, for the pdf of a direction (MIS). */
 inline float triangle_sampled_solid_angle(float3 a, float3 b, float3 c, float3 p) {
-    float3 ua, ub, uc;
-    return triangle_solid_angle_dirs(a, b, c, normalize(cross(b - a, c - a)), p, &ua, &ub, &uc);
+    float3 ua, ub, uc, n = cross(b - a, c - a);
+    return triangle_solid_angle_dirs(a, b, c, normalize(n), length(n), p, &ua, &ub, &uc);
 }
 
 /* Solid-angle pdf (without the pick) of sampling, from p, the point at
@@ -185,7 +192,7 @@ inline int sample_triangle_light(global const Light* l, float3 p, float u1, floa
     if (!(area2 > 0.0f)) return 0;
     float b0, b1;
     float3 ua, ub, uc;
-    float omega = triangle_solid_angle_dirs(a, b, c, normalize(n), p, &ua, &ub, &uc);
+    float omega = triangle_solid_angle_dirs(a, b, c, normalize(n), area2, p, &ua, &ub, &uc);
     if (omega > 0.0f) {
         float3 w = sample_spherical_triangle(ua, ub, uc, omega, u1, u2);
         /* Where w meets the triangle's plane, as barycentrics clamped into the
