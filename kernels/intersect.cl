@@ -19,6 +19,9 @@ typedef struct {
     float3 inv_dir; /* 1/dir: +-infinity for +-0 components, as the slab test needs */
     float sx, sy, sz;
     int kx, ky, kz;
+    /* Every 1/dir component is finite: then (box plane - org) * inv_dir is
+     * never 0 * inf, and the slab test's NaN repair can be skipped. */
+    int inv_dir_finite;
 } RayPre;
 
 inline float axis_of(float3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
@@ -28,6 +31,7 @@ inline RayPre ray_prepare(float3 o, float3 d) {
     r.org = o;
     r.dir = d;
     r.inv_dir = (float3)(1.0f / d.x, 1.0f / d.y, 1.0f / d.z);
+    r.inv_dir_finite = !any(isinf(r.inv_dir));
     float3 a = fabs(d);
     /* kz: the dominant axis; kx, ky follow it cyclically, swapped when d[kz] < 0
      * so that the sheared triangle keeps its winding (Woop et al., section 3). */
@@ -178,12 +182,17 @@ inline float4 intersect_box4(const RayPre* r, float4 lo_x, float4 hi_x, float4 l
     float4 t0x = (lo_x - r->org.x) * r->inv_dir.x, t1x = (hi_x - r->org.x) * r->inv_dir.x;
     float4 t0y = (lo_y - r->org.y) * r->inv_dir.y, t1y = (hi_y - r->org.y) * r->inv_dir.y;
     float4 t0z = (lo_z - r->org.z) * r->inv_dir.z, t1z = (hi_z - r->org.z) * r->inv_dir.z;
-    t0x = select(t0x, -t1x, isnan(t0x));
-    t1x = select(t1x, -t0x, isnan(t1x));
-    t0y = select(t0y, -t1y, isnan(t0y));
-    t1y = select(t1y, -t0y, isnan(t1y));
-    t0z = select(t0z, -t1z, isnan(t0z));
-    t1z = select(t1z, -t0z, isnan(t1z));
+    /* The box planes and the origin are finite, so a NaN here is 0 * inf:
+     * none for a ray whose 1/dir is finite (nearly every ray; the branch
+     * follows the ray, so it is predicted). */
+    if (!r->inv_dir_finite) {
+        t0x = select(t0x, -t1x, isnan(t0x));
+        t1x = select(t1x, -t0x, isnan(t1x));
+        t0y = select(t0y, -t1y, isnan(t0y));
+        t1y = select(t1y, -t0y, isnan(t1y));
+        t0z = select(t0z, -t1z, isnan(t0z));
+        t1z = select(t1z, -t0z, isnan(t1z));
+    }
     /* Comparisons and selects rather than fmin/fmax: the builtins' NaN rules
      * cost a compare and a blend each on x86 (LLVM's minnum). A NaN left
      * after the repair (flat box, origin in it) is in both t0 and t1 of its
