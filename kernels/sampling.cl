@@ -105,9 +105,9 @@ inline float3 sample_spherical_triangle(float3 a, float3 b, float3 c, float area
     float a_hat = u1 * area;
     /* s, t = sin, cos of (a_hat - alpha) by the angle-difference identities,
      * from cos and sin of alpha already at hand (as pbrt-v4's
-     * SampleSphericalTriangle does): one sincos in place of acos, sin and cos. */
-    float cos_a;
-    float sin_a = sincos(a_hat, &cos_a);
+     * SampleSphericalTriangle does): no acos. (sin and cos rather than
+     * sincos, whose private out-argument Oclgrind cannot check.) */
+    float sin_a = sin(a_hat), cos_a = cos(a_hat);
     float s = sin_a * cos_alpha - cos_a * sin_alpha, t = cos_a * cos_alpha + sin_a * sin_alpha;
     float u = t - cos_alpha, v = s + sin_alpha * dot(a, b);
     float q = clamp(((v * t - u * s) * cos_alpha - v) / ((v * s + u * t) * sin_alpha), -1.0f, 1.0f);
