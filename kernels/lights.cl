@@ -125,7 +125,7 @@ typedef struct {
  * - the triangle is small for its distance (area below CLP_MIN_SPHERICAL_SPREAD
  *   times the squared distance to the nearest vertex, a test without square
  *   roots): 1/r^2 and the cosines then vary little over it, and solid-angle
- *   sampling's atan2, sincos and dozen square roots cost more than the
+ *   sampling's atan2, sin, cos and dozen square roots cost more than the
  *   variance they remove (cornell-classic: the same error with 0.1, in less
  *   time; benchmarks/results/pocl-xeon-2core/kernel-speed);
  * - the triangle subtends very little, or nearly a hemisphere (pbrt-v4's
@@ -140,8 +140,9 @@ typedef struct {
  * (CLP_*_SPHERICAL_*) are in shared_structs.h, where the host's tests read them. */
 
 /* The solid angle of light triangle (a, b, c) at p when it is sampled by solid
- * angle, else 0; n is the triangle's unit normal and area2 twice its area. The unit directions towards
- * the vertices go to *ua, *ub, *uc, for the sampling to reuse. */
+ * angle, else 0; n is the triangle's unit normal and area2 twice its area.
+ * The unit directions towards the vertices go to *ua, *ub, *uc, for the
+ * sampling to reuse. */
 inline float triangle_solid_angle_dirs(float3 a, float3 b, float3 c, float3 n, float area2, float3 p, float3* ua,
                                        float3* ub, float3* uc) {
     float3 da = a - p, db = b - p, dc = c - p;
@@ -157,6 +158,7 @@ inline float triangle_solid_angle_dirs(float3 a, float3 b, float3 c, float3 n, f
     return (omega >= CLP_MIN_SPHERICAL_AREA && omega <= CLP_MAX_SPHERICAL_AREA) ? omega : 0.0f;
 }
 
+/* The same, for the pdf of a direction (MIS). */
 inline float triangle_sampled_solid_angle(float3 a, float3 b, float3 c, float3 p) {
     float3 ua, ub, uc, n = cross(b - a, c - a);
     return triangle_solid_angle_dirs(a, b, c, normalize(n), length(n), p, &ua, &ub, &uc);
