@@ -17,21 +17,21 @@ typedef struct {
     float3 org;
     float3 dir;
     float3 inv_dir; /* 1/dir: +-infinity for +-0 components, as the slab test needs */
-    float3 porg;    /* origin with axes permuted to (kx, ky, kz) */
     float sx, sy, sz;
     int kx, ky, kz;
+    /* Every 1/dir component is finite: then (box plane - org) * inv_dir is
+     * never 0 * inf, and the slab test's NaN repair can be skipped. */
+    int inv_dir_finite;
 } RayPre;
 
 inline float axis_of(float3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
-inline float3 permute3(float3 v, int kx, int ky, int kz) {
-    return (float3)(axis_of(v, kx), axis_of(v, ky), axis_of(v, kz));
-}
 
 inline RayPre ray_prepare(float3 o, float3 d) {
     RayPre r;
     r.org = o;
     r.dir = d;
     r.inv_dir = (float3)(1.0f / d.x, 1.0f / d.y, 1.0f / d.z);
+    r.inv_dir_finite = !any(isinf(r.inv_dir));
     float3 a = fabs(d);
     /* kz: the dominant axis; kx, ky follow it cyclically, swapped when d[kz] < 0
      * so that the sheared triangle keeps its winding (Woop et al., section 3). */
@@ -50,7 +50,6 @@ inline RayPre ray_prepare(float3 o, float3 d) {
     r.sx = axis_of(d, kx) / dz;
     r.sy = axis_of(d, ky) / dz;
     r.sz = 1.0f / dz;
-    r.porg = permute3(o, kx, ky, kz);
     return r;
 }
 
@@ -79,14 +78,22 @@ inline int origin_clearly_in_front(const RayPre* r, float3 v0, float3 v1, float3
 
 /* Watertight ray/triangle test. On a hit in (0, tmax) returns 1 and writes t and
  * the barycentric weights (b1, b2) of v1 and v2. */
-inline int intersect_triangle(const RayPre* r, float3 v0, float3 v1, float3 v2, float tmax, float* t_out,
-                              float* b1_out, float* b2_out) {
+__attribute__((always_inline)) inline int intersect_triangle(const RayPre* r, float3 v0, float3 v1, float3 v2,
+                                                             float tmax, float* t_out, float* b1_out, float* b2_out) {
     /* Fused multiply-adds would round the two triangles sharing an edge
      * differently, and a ray could then miss both (Woop et al., section 4). */
 #pragma OPENCL FP_CONTRACT OFF
-    float3 A = permute3(v0, r->kx, r->ky, r->kz) - r->porg;
-    float3 B = permute3(v1, r->kx, r->ky, r->kz) - r->porg;
-    float3 C = permute3(v2, r->kx, r->ky, r->kz) - r->porg;
+    /* v - o, then permuted: the same values as permuting both first
+     * (subtraction is per component). The permutation is an indexed read of
+     * a private array, a store and three loads, where picking each component
+     * by comparing k took two compares and two selects. */
+    float va[3], vb[3], vc[3];
+    vstore3(v0 - r->org, 0, va);
+    vstore3(v1 - r->org, 0, vb);
+    vstore3(v2 - r->org, 0, vc);
+    float3 A = (float3)(va[r->kx], va[r->ky], va[r->kz]);
+    float3 B = (float3)(vb[r->kx], vb[r->ky], vb[r->kz]);
+    float3 C = (float3)(vc[r->kx], vc[r->ky], vc[r->kz]);
     float sxaz = r->sx * A.z, syaz = r->sy * A.z;
     float sxbz = r->sx * B.z, sybz = r->sy * B.z;
     float sxcz = r->sx * C.z, sycz = r->sy * C.z;
@@ -167,21 +174,40 @@ inline float intersect_box(const RayPre* r, float3 lo, float3 hi, float tmax) {
 }
 
 /* intersect_box for the four child boxes of a Bvh4Node at once, stored by
- * coordinate: lane by lane the very same operations in the same order, so
- * the same NaN repair and the same conservative widening hold for each. */
+ * coordinate: lane by lane the same slab distances, the same NaN repair and
+ * the same conservative widening, so the same boxes are entered at the same
+ * distances (min and max are taken by compare and select, see below). */
 inline float4 intersect_box4(const RayPre* r, float4 lo_x, float4 hi_x, float4 lo_y, float4 hi_y, float4 lo_z,
                              float4 hi_z, float tmax) {
     float4 t0x = (lo_x - r->org.x) * r->inv_dir.x, t1x = (hi_x - r->org.x) * r->inv_dir.x;
     float4 t0y = (lo_y - r->org.y) * r->inv_dir.y, t1y = (hi_y - r->org.y) * r->inv_dir.y;
     float4 t0z = (lo_z - r->org.z) * r->inv_dir.z, t1z = (hi_z - r->org.z) * r->inv_dir.z;
-    t0x = select(t0x, -t1x, isnan(t0x));
-    t1x = select(t1x, -t0x, isnan(t1x));
-    t0y = select(t0y, -t1y, isnan(t0y));
-    t1y = select(t1y, -t0y, isnan(t1y));
-    t0z = select(t0z, -t1z, isnan(t0z));
-    t1z = select(t1z, -t0z, isnan(t1z));
-    float4 tnear = fmax(fmax(fmin(t0x, t1x), fmin(t0y, t1y)), fmax(fmin(t0z, t1z), 0.0f));
-    float4 tfar = fmin(fmin(fmax(t0x, t1x), fmax(t0y, t1y)), fmin(fmax(t0z, t1z), tmax)) * (1.0f + 2.0f * CLP_GAMMA(5));
+    /* The box planes and the origin are finite, so a NaN here is 0 * inf:
+     * none for a ray whose 1/dir is finite (nearly every ray; the branch
+     * follows the ray, so it is predicted). */
+    if (!r->inv_dir_finite) {
+        t0x = select(t0x, -t1x, isnan(t0x));
+        t1x = select(t1x, -t0x, isnan(t1x));
+        t0y = select(t0y, -t1y, isnan(t0y));
+        t1y = select(t1y, -t0y, isnan(t1y));
+        t0z = select(t0z, -t1z, isnan(t0z));
+        t1z = select(t1z, -t0z, isnan(t1z));
+    }
+    /* Comparisons and selects rather than fmin/fmax: the builtins' NaN rules
+     * cost a compare and a blend each on x86 (LLVM's minnum). A NaN left
+     * after the repair (flat box, origin in it) is in both t0 and t1 of its
+     * axis, so its near and far are NaN; CLP_MAX4/CLP_MIN4 return their
+     * second operand when the first is NaN, and the chains below put each
+     * axis first against a partial result that is never NaN (it starts from
+     * 0 and tmax), so that axis bounds nothing, as with fmin/fmax. */
+#define CLP_MIN4(a, b) select((b), (a), (a) < (b))
+#define CLP_MAX4(a, b) select((b), (a), (a) > (b))
+    float4 nx = CLP_MIN4(t0x, t1x), ny = CLP_MIN4(t0y, t1y), nz = CLP_MIN4(t0z, t1z);
+    float4 fx = CLP_MAX4(t0x, t1x), fy = CLP_MAX4(t0y, t1y), fz = CLP_MAX4(t0z, t1z);
+    float4 tnear = CLP_MAX4(nx, CLP_MAX4(ny, CLP_MAX4(nz, (float4)(0.0f))));
+    float4 tfar = CLP_MIN4(fx, CLP_MIN4(fy, CLP_MIN4(fz, (float4)(tmax)))) * (1.0f + 2.0f * CLP_GAMMA(5));
+#undef CLP_MIN4
+#undef CLP_MAX4
     return select((float4)(INFINITY), tnear, tnear <= tfar);
 }
 

@@ -120,8 +120,14 @@ typedef struct {
 /* Triangle lights are sampled uniformly in the solid angle they subtend at the
  * shading point (Arvo 1995), which removes the 1/r^2 and light-cosine factors
  * from the estimate: what makes area sampling noisy next to a light. Points
- * are sampled uniformly in area instead where that is as good and the
+ * are sampled uniformly in area instead where that is as good, or the
  * spherical construction is unreliable in float:
+ * - the triangle is small for its distance (area below CLP_MIN_SPHERICAL_SPREAD
+ *   times the squared distance to the nearest vertex, a test without square
+ *   roots): 1/r^2 and the cosines then vary little over it, and solid-angle
+ *   sampling's atan2, sin, cos and dozen square roots cost more than the
+ *   variance they remove (cornell-classic: the same error with 0.1, in less
+ *   time; benchmarks/results/pocl-xeon-2core/kernel-speed);
  * - the triangle subtends very little, or nearly a hemisphere (pbrt-v4's
  *   Triangle::Sample thresholds);
  * - p lies near the triangle's plane (height over the plane below a tenth of
@@ -134,15 +140,28 @@ typedef struct {
  * (CLP_*_SPHERICAL_*) are in shared_structs.h, where the host's tests read them. */
 
 /* The solid angle of light triangle (a, b, c) at p when it is sampled by solid
- * angle, else 0. */
-inline float triangle_sampled_solid_angle(float3 a, float3 b, float3 c, float3 p) {
+ * angle, else 0; n is the triangle's unit normal and area2 twice its area.
+ * The unit directions towards the vertices go to *ua, *ub, *uc, for the
+ * sampling to reuse. */
+inline float triangle_solid_angle_dirs(float3 a, float3 b, float3 c, float3 n, float area2, float3 p, float3* ua,
+                                       float3* ub, float3* uc) {
     float3 da = a - p, db = b - p, dc = c - p;
+    float d2 = fmin(dot(da, da), fmin(dot(db, db), dot(dc, dc)));
+    if (!(0.5f * area2 >= CLP_MIN_SPHERICAL_SPREAD * d2)) return 0.0f;
     float la = length(da), lb = length(db), lc = length(dc);
     if (!(la > 0.0f && lb > 0.0f && lc > 0.0f)) return 0.0f;
-    float3 n = normalize(cross(b - a, c - a));
     if (!(fabs(dot(n, da)) >= CLP_MIN_SPHERICAL_ELEVATION * fmin(la, fmin(lb, lc)))) return 0.0f;
-    float omega = spherical_triangle_area(da / la, db / lb, dc / lc);
+    *ua = da / la;
+    *ub = db / lb;
+    *uc = dc / lc;
+    float omega = spherical_triangle_area(*ua, *ub, *uc);
     return (omega >= CLP_MIN_SPHERICAL_AREA && omega <= CLP_MAX_SPHERICAL_AREA) ? omega : 0.0f;
+}
+
+/* The same, for the pdf of a direction (MIS). */
+inline float triangle_sampled_solid_angle(float3 a, float3 b, float3 c, float3 p) {
+    float3 ua, ub, uc, n = cross(b - a, c - a);
+    return triangle_solid_angle_dirs(a, b, c, normalize(n), length(n), p, &ua, &ub, &uc);
 }
 
 /* Solid-angle pdf (without the pick) of sampling, from p, the point at
@@ -174,9 +193,10 @@ inline int sample_triangle_light(global const Light* l, float3 p, float u1, floa
     float area2 = length(n);
     if (!(area2 > 0.0f)) return 0;
     float b0, b1;
-    float omega = triangle_sampled_solid_angle(a, b, c, p);
+    float3 ua, ub, uc;
+    float omega = triangle_solid_angle_dirs(a, b, c, normalize(n), area2, p, &ua, &ub, &uc);
     if (omega > 0.0f) {
-        float3 w = sample_spherical_triangle(normalize(a - p), normalize(b - p), normalize(c - p), omega, u1, u2);
+        float3 w = sample_spherical_triangle(ua, ub, uc, omega, u1, u2);
         /* Where w meets the triangle's plane, as barycentrics clamped into the
          * triangle (w lies inside it up to rounding). */
         float dn = dot(w, n);

@@ -103,7 +103,12 @@ inline float3 sample_spherical_triangle(float3 a, float3 b, float3 c, float area
     float cos_alpha = clamp(dot(normalize(cross(a, b)), normalize(cross(a, c))), -1.0f, 1.0f);
     float sin_alpha = sqrt(fmax(0.0f, 1.0f - cos_alpha * cos_alpha));
     float a_hat = u1 * area;
-    float s = sin(a_hat - acos(cos_alpha)), t = cos(a_hat - acos(cos_alpha));
+    /* s, t = sin, cos of (a_hat - alpha) by the angle-difference identities,
+     * from cos and sin of alpha already at hand (as pbrt-v4's
+     * SampleSphericalTriangle does): no acos. (sin and cos rather than
+     * sincos, whose private out-argument Oclgrind cannot check.) */
+    float sin_a = sin(a_hat), cos_a = cos(a_hat);
+    float s = sin_a * cos_alpha - cos_a * sin_alpha, t = cos_a * cos_alpha + sin_a * sin_alpha;
     float u = t - cos_alpha, v = s + sin_alpha * dot(a, b);
     float q = clamp(((v * t - u * s) * cos_alpha - v) / ((v * s + u * t) * sin_alpha), -1.0f, 1.0f);
     float3 c_hat = q * a + sqrt(fmax(0.0f, 1.0f - q * q)) * orthogonal_part(c, a);

@@ -100,9 +100,11 @@ typedef std::uint32_t uint;
 
 /* Where a triangle light is sampled by solid angle (Arvo 1995) rather than
  * by area (kernels/lights.cl, triangle_sampled_solid_angle, says why): when
- * its solid angle lies in [MIN_AREA, MAX_AREA] (pbrt-v4's Triangle::Sample
- * thresholds) and the shading point is at least MIN_ELEVATION times its
- * distance to the nearest vertex off the triangle's plane. */
+ * its area is at least MIN_SPREAD times the squared distance from the shading
+ * point to its nearest vertex, its solid angle lies in [MIN_AREA, MAX_AREA]
+ * (pbrt-v4's Triangle::Sample thresholds) and the shading point is at least
+ * MIN_ELEVATION times its distance to the nearest vertex off the triangle's plane. */
+#define CLP_MIN_SPHERICAL_SPREAD 0.1f
 #define CLP_MIN_SPHERICAL_AREA 3e-4f
 #define CLP_MAX_SPHERICAL_AREA 6.22f
 #define CLP_MIN_SPHERICAL_ELEVATION 0.1f

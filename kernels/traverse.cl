@@ -19,7 +19,10 @@
 /* TriVerts and BvhNode are rows of four 4-byte fields at 16-byte offsets
  * (shared_structs.h asserts it): one aligned float4 load fetches a vertex or
  * a box corner, where three scalar loads would each be a separate access. */
-inline int intersect_leaf(const RayPre* r, global const TriVerts* tris, uint first, uint count, Hit* hit CLP_ALPHA_PARAM) {
+/* Out of line: the traversal visits a leaf from four slots, and one copy of
+ * this loop (with the triangle test inlined into it) is smaller than four. */
+__attribute__((noinline)) int intersect_leaf(const RayPre* r, global const TriVerts* tris, uint first, uint count,
+                                             Hit* hit CLP_ALPHA_PARAM) {
     int found = 0;
     for (uint i = first; i < first + count; ++i) {
         global const float4* tv = (global const float4*)&tris[i];

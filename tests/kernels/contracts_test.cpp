@@ -19,11 +19,11 @@ using namespace clpath;
 TEST(Contracts, KernelsSeeTheHostsConstants) {
     Kernel k = test::device().kernel(test::probe_program(), "probe_contracts");
     Buffer ints = test::upload(std::vector<std::uint32_t>(8, 0xdeadbeefu));
-    Buffer floats = test::upload(std::vector<float>(4, NAN));
+    Buffer floats = test::upload(std::vector<float>(5, NAN));
     k.arg(0, ints).arg(1, floats);
     test::run(k, 1);
     const auto i = test::download<std::uint32_t>(ints, 8);
-    const auto f = test::download<float>(floats, 4);
+    const auto f = test::download<float>(floats, 5);
     EXPECT_EQ(i[0], CLP_TILE);
     EXPECT_EQ(i[1], CLP_BATCH_TILE);
     EXPECT_EQ(i[2], CLP_BATCH_GRID);
@@ -36,6 +36,7 @@ TEST(Contracts, KernelsSeeTheHostsConstants) {
     EXPECT_EQ(f[1], CLP_MAX_SPHERICAL_AREA);
     EXPECT_EQ(f[2], CLP_MIN_SPHERICAL_ELEVATION);
     EXPECT_EQ(f[3], CLP_ENV_NOT_SAMPLED);
+    EXPECT_EQ(f[4], CLP_MIN_SPHERICAL_SPREAD);
 }
 
 namespace {

@@ -40,13 +40,15 @@ double solid_angle(dvec3 p) {
     return 2 * std::atan2(std::abs(glm::dot(a, glm::cross(b, c))), 1 + glm::dot(a, b) + glm::dot(b, c) + glm::dot(c, a));
 }
 
-// The kernel's rule: solid-angle sampling between these solid angles, for
-// points at least a tenth of the nearest vertex's distance off the plane.
+// The kernel's rule: solid-angle sampling for a triangle not small for its
+// distance, between these solid angles, for points at least a tenth of the
+// nearest vertex's distance off the plane.
 bool sampled_by_solid_angle(dvec3 p) {
     const double omega = solid_angle(p);
     const double nearest = std::min({glm::length(kA - p), glm::length(kB - p), glm::length(kC - p)});
-    return omega >= CLP_MIN_SPHERICAL_AREA && omega <= CLP_MAX_SPHERICAL_AREA &&
-           std::abs(p.z) >= CLP_MIN_SPHERICAL_ELEVATION * nearest;
+    const double area = 0.5 * glm::length(glm::cross(kB - kA, kC - kA));
+    return area >= CLP_MIN_SPHERICAL_SPREAD * nearest * nearest && omega >= CLP_MIN_SPHERICAL_AREA &&
+           omega <= CLP_MAX_SPHERICAL_AREA && std::abs(p.z) >= CLP_MIN_SPHERICAL_ELEVATION * nearest;
 }
 
 // The point of the triangle at square-root-warp coordinates (u1, u2), the
@@ -88,12 +90,13 @@ const dvec3 kPlaces[] = {
     {0.3, 0.3, 0.05},     // just in front: nearly a hemisphere of light
     {0.2, 0.5, 1.0},      // an ordinary distance
     {0.3, 0.3, 100.0},    // far away: area sampling
+    {0.3, 0.3, 2.5},      // small for its distance (area 0.5 < 0.1 x 6.43): area sampling
     {1.2, 1.2, 0.146},    // low over the plane, beside the light: solid angle
     {-0.14, -0.84, 0.1},  // low, beside a vertex: solid angle
     {1.2, 1.2, 0.01},     // grazing (a wall just below a ceiling lamp): area
     {-0.14, -0.84, 0.022},
 };
-constexpr int kPlaceCount = 7;
+constexpr int kPlaceCount = 8;
 
 // Chi-square of the sampled points, binned on a 20 x 20 grid in (u1, u2),
 // against the density integrated over each cell by the midpoint rule on an

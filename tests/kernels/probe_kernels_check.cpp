@@ -54,7 +54,7 @@ TEST(ProbeKernels, Layout) {
     k.arg(0, out);
     test::run(k, 1);
     Kernel c = test::device().kernel(test::probe_program(), "probe_contracts");
-    Buffer ints = out_buffer<std::uint32_t>(8), floats = out_buffer<float>(4);
+    Buffer ints = out_buffer<std::uint32_t>(8), floats = out_buffer<float>(5);
     c.arg(0, ints).arg(1, floats);
     test::run(c, 1);
 }

@@ -34,6 +34,7 @@ kernel void probe_contracts(global uint* out, global float* fout) {
     fout[1] = CLP_MAX_SPHERICAL_AREA;
     fout[2] = CLP_MIN_SPHERICAL_ELEVATION;
     fout[3] = CLP_ENV_NOT_SAMPLED;
+    fout[4] = CLP_MIN_SPHERICAL_SPREAD;
 }
 
 /* Directions drawn from the environment distribution the host built, and
