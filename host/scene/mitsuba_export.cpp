@@ -107,7 +107,7 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
         for (std::size_t t = 0; t < scene.triangle_count(); ++t)
             if (scene.triangle_material[t] == mi) tris.push_back(t);
         if (tris.empty()) continue;
-        const Material& m = scene.materials[mi];
+        const SceneMaterial& m = scene.materials[mi];
         const std::string name = safe_name(mi < scene.material_names.size() ? scene.material_names[mi] : "", taken);
         if (mitsuba_gltf_invisible(m)) {
             note("'" + name + "': alpha MASK with a constant coverage below the cutoff: never hit, left out");

@@ -54,7 +54,7 @@ std::string bitmap(const Scene& scene, int index, const std::string& channels, b
            ", \"scale\": " + scale + (normal_scale != 1 ? ", \"normal_scale\": " + num(normal_scale) : "") + "}}";
 }
 
-bool has(const Material& m, unsigned slot) { return m.texture[slot] != CLP_NO_TEXTURE; }
+bool has(const SceneMaterial& m, unsigned slot) { return m.texture[slot] != CLP_NO_TEXTURE; }
 
 // A texture's channel c (0..3) as a fraction, over all texels: its least and greatest.
 std::pair<double, double> channel_range(const Texture& t, int c) {
@@ -96,18 +96,18 @@ void check_normal_frame(const Scene& scene, std::uint32_t mi, const std::string&
 
 }  // namespace
 
-bool mitsuba_gltf_has_cutout(const Material& m) {
+bool mitsuba_gltf_has_cutout(const SceneMaterial& m) {
     if (m.kind != CLP_MAT_GLTF) return false;
     if (m.alpha_mode == CLP_ALPHA_BLEND) return m.alpha < 1 || has(m, CLP_TEX_BASE);
     if (m.alpha_mode == CLP_ALPHA_MASK) return has(m, CLP_TEX_BASE);
     return false;
 }
 
-bool mitsuba_gltf_invisible(const Material& m) {
+bool mitsuba_gltf_invisible(const SceneMaterial& m) {
     return m.kind == CLP_MAT_GLTF && m.alpha_mode == CLP_ALPHA_MASK && !has(m, CLP_TEX_BASE) && !(m.alpha >= m.alpha_cutoff);
 }
 
-std::string mitsuba_gltf_radiance(const Scene& scene, const Material& m, MitsubaTextureFiles& tex) {
+std::string mitsuba_gltf_radiance(const Scene& scene, const SceneMaterial& m, MitsubaTextureFiles& tex) {
     const glm::vec3 e = load3(m.emission);
     if (m.kind == CLP_MAT_GLTF && has(m, CLP_TEX_EMISSION))
         return bitmap(scene, m.texture[CLP_TEX_EMISSION], "rgb", true, vec(e), tex);
@@ -121,7 +121,7 @@ std::string mitsuba_vertex_colour_product(const std::string& texture) {
 
 std::string mitsuba_gltf_bsdf(const Scene& scene, std::uint32_t mi, const std::string& name, MitsubaTextureFiles& tex,
                               bool colours) {
-    const Material& m = scene.materials.at(mi);
+    const SceneMaterial& m = scene.materials.at(mi);
     if (emits(m) && m.alpha_mode != CLP_ALPHA_OPAQUE)
         throw Error("material '" + name + "': an emitter with alpha " + (m.alpha_mode == CLP_ALPHA_MASK ? "MASK" : "BLEND") +
                     " (Mitsuba's area light ignores the BSDF's opacity)");

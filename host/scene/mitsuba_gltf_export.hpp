@@ -49,14 +49,14 @@ std::string mitsuba_vertex_colour_product(const std::string& texture);
 
 // The area light's radiance (JSON): the emission factor, times the emission
 // texture where the material has one.
-std::string mitsuba_gltf_radiance(const Scene& scene, const Material& m, MitsubaTextureFiles& tex);
+std::string mitsuba_gltf_radiance(const Scene& scene, const SceneMaterial& m, MitsubaTextureFiles& tex);
 
 // Whether the material's alpha mode makes Mitsuba see through it somewhere
 // (mask): the scene then needs the volpath integrator, whose shadow rays pass
 // such surfaces (path's stop at them).
-bool mitsuba_gltf_has_cutout(const Material& m);
+bool mitsuba_gltf_has_cutout(const SceneMaterial& m);
 
 // MASK with a constant coverage below the cutoff: clpath never hits it.
-bool mitsuba_gltf_invisible(const Material& m);
+bool mitsuba_gltf_invisible(const SceneMaterial& m);
 
 }  // namespace clpath
