@@ -140,9 +140,9 @@ clpath_usage_test(camera_on_gltf RC 0 ARGS render ${SUZANNE} ${SMALL} --camera f
 # two-cameras.gltf: camera 0 'front' faces the square, camera 1 'side' sees it edge-on.
 set(TWO_CAMERAS ${CLI_DATA}/two-cameras.gltf)
 file(REMOVE ${USAGE_OUT}/gltf-cam-name.pfm ${USAGE_OUT}/gltf-cam-index.pfm)
-clpath_usage_test(gltf_camera_by_name RC 0 ARGS render ${TWO_CAMERAS} ${SMALL} --gltf-camera side
+clpath_usage_test(gltf_camera_by_name RC 0 ARGS render ${TWO_CAMERAS} ${SMALL} --gltf-camera side --no-ground
                   -o ${USAGE_OUT}/gltf-cam-name.pfm MAKES ${USAGE_OUT}/gltf-cam-name.pfm OUTPUT "summary: .*triangles=2 ")
-clpath_usage_test(gltf_camera_by_index RC 0 ARGS render ${TWO_CAMERAS} ${SMALL} --gltf-camera 1
+clpath_usage_test(gltf_camera_by_index RC 0 ARGS render ${TWO_CAMERAS} ${SMALL} --gltf-camera 1 --no-ground
                   -o ${USAGE_OUT}/gltf-cam-index.pfm MAKES ${USAGE_OUT}/gltf-cam-index.pfm OUTPUT "summary: .*triangles=2 ")
 # The name and the index choose the same camera: the same image, bit for bit; the
 # control (the other camera) must differ, or the comparison could not tell.

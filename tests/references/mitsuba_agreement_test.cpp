@@ -109,7 +109,7 @@ const std::vector<Entry>& entries() {
         {"gltf-normal-map", "benchmarks/references/scenes/gltf-normal-map.json",
          "glTF material with a tangent-space normal map (scale 0.8)", 16},
         {"suzanne", "scenes/suzanne/Suzanne.gltf",
-         "a glTF model: base colour and metallic-roughness textures, constant sky", 16},
+         "a bare glTF model: base colour and metallic-roughness textures, the presentation's sky, sun and ground", 16},
         {"textured", "scenes/textured/textured.json",
          "textured OBJ/MTL (map_Kd, map_d cut-out), vertex colours, Suzanne, directional light", 16},
     };
