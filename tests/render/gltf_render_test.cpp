@@ -1,6 +1,6 @@
 // Textures, alpha cut-outs and the glTF material through the renderer: a
 // MASK cut-out is skipped by camera and shadow rays alike (with OPAQUE as the
-// control), and the Suzanne model renders its base-colour texture.
+// control), BLEND is stochastic coverage, and the Suzanne model renders its base-colour texture.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -133,6 +133,44 @@ TEST(GltfRender, MaskCutoutLetsShadowRaysThrough) {
             EXPECT_LT(bright, 0.02) << "OPAQUE: all shadow";
         }
     }
+}
+
+// BLEND is stochastic coverage: a camera ray passes a surface of alpha a with
+// probability 1 - a, so the image's expected value is a times the opaque
+// surface's plus 1 - a times the white sky behind it. Each sample is one
+// Bernoulli draw on top of the opaque surface's radiance, so over N samples
+// the mean's standard deviation is at most sqrt(a (1 - a) / N) (values in
+// [0, 1]); 16x16 pixels x 64 spp gives 0.0034, and 0.02 is 5.9 of it
+// (two-sided false-failure rate 4e-9, with the opaque render's own noise
+// smaller still). Control: MASK with the same alpha (below its cutoff) is
+// fully transparent, 0.75 (1 - opaque) away from the expectation.
+TEST(GltfRender, BlendIsStochasticCoverageForCameraRays) {
+    const double a = 64.0 / 255.0;
+    auto render_mode = [&](std::uint32_t mode) {
+        Scene s;
+        Texture t;
+        t.width = t.height = 1;
+        t.rgba8 = {0, 0, 0, 64};
+        t.wrap_s = t.wrap_t = CLP_WRAP_CLAMP;
+        t.nearest = true;
+        s.textures.push_back(t);
+        SceneMaterial m = gltf_material(glm::vec3(1), 0.0f, 0.5f);  // black base: only the specular layer
+        m.texture[CLP_TEX_BASE] = 0;
+        m.alpha_mode = mode;
+        const std::uint32_t id = s.add_material("blend", m);
+        add_square(s, glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), id, true);
+        s.environment.color = glm::vec3(1);
+        s.camera.eye = {0, 0, 3};
+        s.camera.target = {0, 0, 0};
+        s.camera.vfov_degrees = 20;  // the square fills the view
+        s.camera.width = s.camera.height = 16;
+        return column_mean(test::render(s, path_settings(), 64).linear, 0, 16);
+    };
+    const double opaque = render_mode(CLP_ALPHA_OPAQUE), blend = render_mode(CLP_ALPHA_BLEND);
+    const double expected = a * opaque + (1 - a);
+    ASSERT_LT(opaque, 0.3) << "the surface must differ from the sky, or coverage could not be seen";
+    EXPECT_NEAR(blend, expected, 0.02) << "opaque " << opaque;
+    EXPECT_GT(std::abs(render_mode(CLP_ALPHA_MASK) - expected), 0.02) << "control: MASK below its cutoff";
 }
 
 // The repository's Suzanne: its first-hit albedo shows the base-colour
