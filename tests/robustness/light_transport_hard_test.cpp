@@ -215,24 +215,11 @@ TEST(LightTransportHard, CameraInsideClosedObjectSeesNothing) {
 }
 
 namespace {
-// A closed room of axis-aligned boxes (scenes/hard/far-from-origin.json at
-// the origin) lit by a two-sided lamp of radiance 12 under its ceiling, the
-// camera inside, a constant sky of radiance `sky` outside.
+// The integer room (closed, lit by its lamp under the ceiling, the camera
+// inside) with a constant sky of radiance `sky` outside.
 Scene closed_room(float sky) {
-    Scene s;
-    s.name = "closed-room";
-    const auto white = s.add_material("white", diffuse(glm::vec3(0.75f)));
-    s.add_triangles(transformed(make_box(), shape_transform({0, 64, 0}, {0, 0, 0}, glm::vec3(128))), white);
-    s.add_triangles(transformed(make_box(), shape_transform({-24, 24, 48}, {0, 0, 0}, {32, 48, 32})),
-                    s.add_material("red", diffuse(glm::vec3(0.7f, 0.1f, 0.1f))));
-    s.add_triangles(transformed(make_box(), shape_transform({48, 16, 48}, {0, 0, 0}, glm::vec3(32))), white);
-    s.add_triangles(quad({0, 120, 0}, {0, 0, 0}, {48, 1, 48}),
-                    s.add_material("lamp", emitter(glm::vec3(12.0f), true)));
+    Scene s = test::integer_room();
     s.environment.color = glm::vec3(sky);
-    s.camera.eye = {0, 64, -60};
-    s.camera.target = {0, 40, 0};
-    s.camera.vfov_degrees = 70;
-    s.camera.width = s.camera.height = 32;
     return s;
 }
 }  // namespace

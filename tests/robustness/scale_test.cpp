@@ -18,6 +18,7 @@
 #include <cstdio>
 
 #include "scene/shapes.hpp"
+#include "support/analytic_scenes.hpp"
 #include "support/image_agreement.hpp"
 #include "support/render_helpers.hpp"
 #include "support/render_runs.hpp"
@@ -38,26 +39,6 @@ void expect_unoccluded(const Scene& s, std::uint32_t spp) {
 
 std::vector<glm::vec3> box_at(glm::vec3 centre, glm::vec3 size) {
     return transformed(make_box(), shape_transform(centre, {0, 0, 0}, size));
-}
-
-// The room: a closed 128-unit box lit by a two-sided square lamp under its
-// ceiling; two boxes standing on the floor, one touching the back wall and
-// one in a corner (contact lines where leaks show), all on integer coordinates.
-Scene integer_room() {
-    Scene s;
-    s.name = "integer-room";
-    const auto white = s.add_material("white", diffuse(glm::vec3(0.75f)));
-    const auto red = s.add_material("red", diffuse(glm::vec3(0.7f, 0.1f, 0.1f)));
-    const auto lamp = s.add_material("lamp", emitter(glm::vec3(12.0f), true));
-    s.add_triangles(box_at({0, 64, 0}, {128, 128, 128}), white);
-    s.add_triangles(box_at({-24, 24, 48}, {32, 48, 32}), red);   // touches the floor and the back wall
-    s.add_triangles(box_at({48, 16, 48}, {32, 32, 32}), white);  // in the back corner
-    s.add_triangles(transformed(make_plane(), shape_transform({0, 120, 0}, {0, 0, 0}, {48, 1, 48})), lamp);
-    s.camera.eye = {0, 64, -60};
-    s.camera.target = {0, 40, 0};
-    s.camera.vfov_degrees = 70;
-    s.camera.width = s.camera.height = 32;
-    return s;
 }
 
 RenderSettings path_settings() {
@@ -81,11 +62,11 @@ void expect_agrees_with_original(const Scene& original, const Scene& moved, cons
 
 }  // namespace
 
-TEST(Scale, TranslatedBy1e3) { expect_agrees_with_original(integer_room(), test::placed(integer_room(), 1, glm::dvec3(1e3)), "moved 1e3"); }
-TEST(Scale, TranslatedBy1e5) { expect_agrees_with_original(integer_room(), test::placed(integer_room(), 1, glm::dvec3(1e5)), "moved 1e5"); }
-TEST(Scale, TranslatedBy1e6) { expect_agrees_with_original(integer_room(), test::placed(integer_room(), 1, glm::dvec3(1e6)), "moved 1e6"); }
-TEST(Scale, ScaledBy1eMinus4) { expect_agrees_with_original(integer_room(), test::placed(integer_room(), 1e-4, glm::dvec3(0)), "scaled 1e-4"); }
-TEST(Scale, ScaledBy1e4) { expect_agrees_with_original(integer_room(), test::placed(integer_room(), 1e4, glm::dvec3(0)), "scaled 1e4"); }
+TEST(Scale, TranslatedBy1e3) { expect_agrees_with_original(test::integer_room(), test::placed(test::integer_room(), 1, glm::dvec3(1e3)), "moved 1e3"); }
+TEST(Scale, TranslatedBy1e5) { expect_agrees_with_original(test::integer_room(), test::placed(test::integer_room(), 1, glm::dvec3(1e5)), "moved 1e5"); }
+TEST(Scale, TranslatedBy1e6) { expect_agrees_with_original(test::integer_room(), test::placed(test::integer_room(), 1, glm::dvec3(1e6)), "moved 1e6"); }
+TEST(Scale, ScaledBy1eMinus4) { expect_agrees_with_original(test::integer_room(), test::placed(test::integer_room(), 1e-4, glm::dvec3(0)), "scaled 1e-4"); }
+TEST(Scale, ScaledBy1e4) { expect_agrees_with_original(test::integer_room(), test::placed(test::integer_room(), 1e4, glm::dvec3(0)), "scaled 1e4"); }
 
 // A bias spread over the whole image is too small per pixel for the tests
 // above, but not for the image mean. Bounce rays used to start gamma(10) |p|
@@ -125,8 +106,8 @@ MeanComparison compare_image_means(const std::vector<Image>& a, const std::vecto
 TEST(Scale, ImageMeanDoesNotDependOnTheDistance) {
     const RenderSettings st = path_settings();
     std::uint64_t nonfinite = 0;
-    const auto origin = test::render_runs(integer_room(), st, 64, 16, 500, &nonfinite);
-    const auto far = test::render_runs(test::placed(integer_room(), 1, glm::dvec3(4e6)), st, 64, 16, 600, &nonfinite);
+    const auto origin = test::render_runs(test::integer_room(), st, 64, 16, 500, &nonfinite);
+    const auto far = test::render_runs(test::placed(test::integer_room(), 1, glm::dvec3(4e6)), st, 64, 16, 600, &nonfinite);
     EXPECT_EQ(nonfinite, 0u);
     const MeanComparison r = compare_image_means(origin, far, 1);
     std::fprintf(stderr, "[ scale ] image mean moved 4e6 / at the origin: %.5f (t %.2f, p %.3g)\n", r.ratio, r.t, r.p);
@@ -141,7 +122,7 @@ TEST(Scale, ImageMeanDoesNotDependOnTheDistance) {
 // the room with a slit along the back wall's floor edge (the floor 4 units
 // short), sunlit from outside, is another image.
 TEST(Scale, AgreementSeesALeakingCorner) {
-    Scene leaky = integer_room();
+    Scene leaky = test::integer_room();
     // Replace the room's floor (triangles 2 and 3 of make_box: the -y face) by one 4 units shorter at the back.
     for (std::size_t t = 0; t < 12; ++t) {
         glm::vec3* v = &leaky.vertices[3 * t];
@@ -150,7 +131,7 @@ TEST(Scale, AgreementSeesALeakingCorner) {
                 if (v[k].z == 64) v[k].z = 60;
     }
     leaky.environment.color = glm::vec3(200.0f);
-    Scene sealed = integer_room();
+    Scene sealed = test::integer_room();
     sealed.environment.color = glm::vec3(200.0f);
     const RenderSettings st = path_settings();
     const auto a = test::render_runs(sealed, st, 16, 8, 300);

@@ -299,16 +299,17 @@ void expect_model_ground_and_shadow(const Scene& s) {
 
 TEST(PresentationRender, BareMeshShowsModelGroundAndShadow) { expect_model_ground_and_shadow(small(bare(kCube))); }
 
-TEST(PresentationRender, ControlWithoutTheSunHasNoShadow) {
-    // The same regions with the sun taken out: the shadow check above must
-    // then fail, or it would not be measuring the sun's shadow.
-    Scene s = small(bare(kCube));
+// Control: the same regions with the sun taken out. The shadow check above
+// must then fail, or it would not be measuring the sun's shadow.
+void expect_no_shadow_without_the_sun(Scene s) {
     const glm::vec3 sun = s.lights.at(0).direction;
     s.lights.clear();
     const Regions r = regions(s, 12, true, sun);
     ASSERT_GE(r.shadow, 10u);
     EXPECT_GE(r.shadow_mean, 0.6 * r.lit_mean);
 }
+
+TEST(PresentationRender, ControlWithoutTheSunHasNoShadow) { expect_no_shadow_without_the_sun(small(bare(kCube))); }
 
 // The glTF cube, rendered as a user gets it: the model, the ground and the
 // model's shadow, as for the OBJ cube above.
@@ -317,12 +318,7 @@ TEST(PresentationRender, BareGltfShowsModelGroundAndShadow) {
 }
 
 TEST(PresentationRender, GltfControlWithoutTheSunHasNoShadow) {
-    Scene s = small(bare_gltf(gltf_cube()));
-    const glm::vec3 sun = s.lights.at(0).direction;
-    s.lights.clear();
-    const Regions r = regions(s, 12, true, sun);
-    ASSERT_GE(r.shadow, 10u);
-    EXPECT_GE(r.shadow_mean, 0.6 * r.lit_mean);
+    expect_no_shadow_without_the_sun(small(bare_gltf(gltf_cube())));
 }
 
 TEST(PresentationRender, FlatYzModelIsVisible) {

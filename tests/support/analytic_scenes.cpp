@@ -56,4 +56,24 @@ void expect_sky_furnace(const Scene& s, double factor, std::uint32_t integrator,
     }
 }
 
+Scene integer_room() {
+    const auto box_at = [](glm::vec3 centre, glm::vec3 size) {
+        return transformed(make_box(), shape_transform(centre, {0, 0, 0}, size));
+    };
+    Scene s;
+    s.name = "integer-room";
+    const auto white = s.add_material("white", diffuse(glm::vec3(0.75f)));
+    const auto red = s.add_material("red", diffuse(glm::vec3(0.7f, 0.1f, 0.1f)));
+    const auto lamp = s.add_material("lamp", emitter(glm::vec3(12.0f), true));
+    s.add_triangles(box_at({0, 64, 0}, {128, 128, 128}), white);
+    s.add_triangles(box_at({-24, 24, 48}, {32, 48, 32}), red);   // touches the floor and the back wall
+    s.add_triangles(box_at({48, 16, 48}, {32, 32, 32}), white);  // in the back corner
+    s.add_triangles(transformed(make_plane(), shape_transform({0, 120, 0}, {0, 0, 0}, {48, 1, 48})), lamp);
+    s.camera.eye = {0, 64, -60};
+    s.camera.target = {0, 40, 0};
+    s.camera.vfov_degrees = 70;
+    s.camera.width = s.camera.height = 32;
+    return s;
+}
+
 }  // namespace clpath::test

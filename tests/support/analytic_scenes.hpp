@@ -1,6 +1,7 @@
 #pragma once
 // Scenes whose images are known in closed form, for the tests that check
-// light transport against them.
+// light transport against them, and the integer room, whose image must not
+// change when it is moved or scaled.
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -34,5 +35,11 @@ double ao_next_to_wall(double x, double d);
 // standard errors (alpha 1e-4 per channel; pixels are independent estimates)
 // plus float rounding along the path (gamma(4) per bounce: 256 u).
 void expect_sky_furnace(const Scene& s, double factor, std::uint32_t integrator, std::uint32_t seed);
+
+// The integer room: a closed 128-unit box lit by a two-sided square lamp
+// (radiance 12) under its ceiling; two boxes standing on the floor, one
+// touching the back wall and one in a corner (contact lines where leaks show),
+// all on integer coordinates, the camera inside (32 x 32). No environment.
+Scene integer_room();
 
 }  // namespace clpath::test
