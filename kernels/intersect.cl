@@ -22,6 +22,9 @@ typedef struct {
     /* Every 1/dir component is finite: then (box plane - org) * inv_dir is
      * never 0 * inf, and the slab test's NaN repair can be skipped. */
     int inv_dir_finite;
+    /* Bvh4Node rows of each axis's near and far planes (lo_x = 0, hi_x = 1,
+     * lo_y = 2, ...): lo is entered first where 1/dir >= 0. */
+    int near_x, near_y, near_z;
 } RayPre;
 
 inline float axis_of(float3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
@@ -32,6 +35,9 @@ inline RayPre ray_prepare(float3 o, float3 d) {
     r.dir = d;
     r.inv_dir = (float3)(1.0f / d.x, 1.0f / d.y, 1.0f / d.z);
     r.inv_dir_finite = !any(isinf(r.inv_dir));
+    r.near_x = r.inv_dir.x < 0.0f ? 1 : 0;
+    r.near_y = r.inv_dir.y < 0.0f ? 3 : 2;
+    r.near_z = r.inv_dir.z < 0.0f ? 5 : 4;
     float3 a = fabs(d);
     /* kz: the dominant axis; kx, ky follow it cyclically, swapped when d[kz] < 0
      * so that the sheared triangle keeps its winding (Woop et al., section 3). */
@@ -204,6 +210,26 @@ inline float4 intersect_box4(const RayPre* r, float4 lo_x, float4 hi_x, float4 l
 #define CLP_MAX4(a, b) select((b), (a), (a) > (b))
     float4 nx = CLP_MIN4(t0x, t1x), ny = CLP_MIN4(t0y, t1y), nz = CLP_MIN4(t0z, t1z);
     float4 fx = CLP_MAX4(t0x, t1x), fy = CLP_MAX4(t0y, t1y), fz = CLP_MAX4(t0z, t1z);
+    float4 tnear = CLP_MAX4(nx, CLP_MAX4(ny, CLP_MAX4(nz, (float4)(0.0f))));
+    float4 tfar = CLP_MIN4(fx, CLP_MIN4(fy, CLP_MIN4(fz, (float4)(tmax)))) * (1.0f + 2.0f * CLP_GAMMA(5));
+#undef CLP_MIN4
+#undef CLP_MAX4
+    return select((float4)(INFINITY), tnear, tnear <= tfar);
+}
+
+/* intersect_box4 for a ray whose 1/dir is finite, given each axis's planes
+ * in the order the ray crosses them (RayPre.near_x...). For such a ray the
+ * slab distances are finite, and (near - o) / d <= (far - o) / d also after
+ * rounding (rounding is monotonic), so the per-axis min and max of
+ * intersect_box4 are known in advance: the same distances, bit for bit, with
+ * twelve compares and selects fewer. */
+inline float4 intersect_box4_ordered(const RayPre* r, float4 near_x, float4 far_x, float4 near_y, float4 far_y,
+                                     float4 near_z, float4 far_z, float tmax) {
+    float4 nx = (near_x - r->org.x) * r->inv_dir.x, fx = (far_x - r->org.x) * r->inv_dir.x;
+    float4 ny = (near_y - r->org.y) * r->inv_dir.y, fy = (far_y - r->org.y) * r->inv_dir.y;
+    float4 nz = (near_z - r->org.z) * r->inv_dir.z, fz = (far_z - r->org.z) * r->inv_dir.z;
+#define CLP_MIN4(a, b) select((b), (a), (a) < (b))
+#define CLP_MAX4(a, b) select((b), (a), (a) > (b))
     float4 tnear = CLP_MAX4(nx, CLP_MAX4(ny, CLP_MAX4(nz, (float4)(0.0f))));
     float4 tfar = CLP_MIN4(fx, CLP_MIN4(fy, CLP_MIN4(fz, (float4)(tmax)))) * (1.0f + 2.0f * CLP_GAMMA(5));
 #undef CLP_MIN4

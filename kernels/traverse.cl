@@ -93,7 +93,12 @@ inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tr
     for (;;) {
         global const float4* n = (global const float4*)&nodes[node];
         if (visits) ++*visits;
-        float4 d = intersect_box4(r, n[0], n[1], n[2], n[3], n[4], n[5], hit.t);
+        float4 d;
+        if (r->inv_dir_finite)
+            d = intersect_box4_ordered(r, n[r->near_x], n[r->near_x ^ 1], n[r->near_y], n[r->near_y ^ 1],
+                                       n[r->near_z], n[r->near_z ^ 1], hit.t);
+        else
+            d = intersect_box4(r, n[0], n[1], n[2], n[3], n[4], n[5], hit.t);
         int4 child = as_int4(n[6]);
         uint4 count = as_uint4(n[7]);
         d = select(d, (float4)(INFINITY), child == 0); /* empty slots */
