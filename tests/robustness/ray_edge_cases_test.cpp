@@ -234,7 +234,9 @@ TEST(RayEdgeCases, OriginsOnVerticesAndEdges) {
         }
         if (k % 2) {
             ASSERT_GE(t.prim[k], 0) << "inward ray " << k;
-            if (t.t[k] > 1e-6) EXPECT_NEAR(t.t[k], far[k / 2], 1e-5) << "inward ray " << k << " (antipode)";
+            if (t.t[k] > 1e-6) {
+                EXPECT_NEAR(t.t[k], far[k / 2], 1e-5) << "inward ray " << k << " (antipode)";
+            }
         }
     }
 }
