@@ -21,5 +21,6 @@ Command add_bench_scaling_command(CLI::App& bench);
 Command add_bench_rays_command(CLI::App& bench);
 Command add_bench_convergence_command(CLI::App& bench);
 Command add_bench_build_command(CLI::App& bench);
+Command add_bench_path_command(CLI::App& bench);
 
 }  // namespace clpath

@@ -1,0 +1,371 @@
+#include "bench/embree_path_tracer.hpp"
+
+#include <fstream>
+
+#include "render/prepared_scene.hpp"
+#include "util/error.hpp"
+
+#if CLPATH_WITH_EMBREE
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <system_error>
+#include <thread>
+
+#include <embree3/rtcore.h>
+
+#include "bench/cpu_estimator.hpp"
+#endif
+
+namespace clpath {
+
+std::string cpu_model_name() {
+    std::ifstream in("/proc/cpuinfo");
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("model name", 0) == 0) {
+            const auto colon = line.find(':');
+            if (colon == std::string::npos) break;
+            std::string name = line.substr(colon + 1);
+            name.erase(0, name.find_first_not_of(" \t"));
+            if (!name.empty()) return name;
+        }
+    return "an unknown CPU";
+}
+
+std::vector<std::string> embree_path_unsupported(const Scene& scene) {
+    std::vector<std::string> why;
+    static const char* kind_names[] = {"diffuse", "a mirror", "a conductor", "a dielectric", "a glTF metallic-roughness material"};
+    std::vector<bool> used(scene.materials.size(), false);
+    for (auto m : scene.triangle_material)
+        if (m < used.size()) used[m] = true;
+    for (std::size_t i = 0; i < used.size(); ++i) {
+        if (!used[i]) continue;
+        const SceneMaterial& m = scene.materials[i];
+        const std::string name = "material '" + (i < scene.material_names.size() ? scene.material_names[i] : std::to_string(i)) + "'";
+        if (m.kind != CLP_MAT_DIFFUSE)
+            why.push_back(name + " is " + (m.kind < CLP_MAT_KIND_COUNT ? kind_names[m.kind] : "of an unknown kind") +
+                          " (only diffuse surfaces are supported)");
+        for (int t : m.texture)
+            if (t != CLP_NO_TEXTURE) {
+                why.push_back(name + " maps a texture");
+                break;
+            }
+        if (m.alpha_mode != CLP_ALPHA_OPAQUE) why.push_back(name + " is not opaque (alpha cut-out or blend)");
+    }
+    if (!scene.colors.empty()) why.push_back("the mesh has vertex colours");
+    if (scene.environment.emits()) why.push_back("the scene has an environment (sky colour or map)");
+    return why;
+}
+
+#if !CLPATH_WITH_EMBREE
+
+bool embree_path_built_in() { return false; }
+
+std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene&, std::uint32_t, int) { return nullptr; }
+
+#else
+
+bool embree_path_built_in() { return true; }
+
+namespace {
+
+using cpu::max3;
+using glm::vec3;
+
+void check_device(RTCDevice device, const char* what) {
+    const RTCError e = rtcGetDeviceError(device);
+    if (e != RTC_ERROR_NONE) throw Error(std::string("Embree: ") + what + " failed (error " + std::to_string(int(e)) + ")");
+}
+
+// Embree has no guard against the surface a ray leaves: a ray whose origin
+// lies exactly on it (the kernels' offset_ray_origin moves an origin on an
+// axis-aligned face by no more than one ulp) would see that surface at t = 0.
+// Rays start (1 + max |o_i|) 1e-6 along instead, as in Mitsuba 3 and the ray
+// batches' Embree baseline (bench/embree_baseline.cpp).
+float self_tnear(vec3 o, vec3 d) {
+    const float mag = std::max({std::fabs(o.x), std::fabs(o.y), std::fabs(o.z)});
+    const float len = glm::length(d);
+    return len > 0 ? (1.0f + mag) * 1e-6f / len : 0.0f;
+}
+
+constexpr int kTile = 16;  // pixels per side of the tiles the threads take in turn
+
+class Tracer final : public EmbreePathTracer {
+public:
+    Tracer(const Scene& scene, std::uint32_t max_depth, int threads) : max_depth_(max_depth) {
+        const auto why = embree_path_unsupported(scene);
+        if (!why.empty()) {
+            std::string all;
+            for (const auto& w : why) all += (all.empty() ? "" : "; ") + w;
+            throw Error("the Embree path tracer cannot render this scene as clpath does: " + all);
+        }
+        // The light table, materials and normals exactly as the renderer
+        // uploads them (render/prepared_scene.hpp).
+        RenderSettings path;
+        path.integrator = CLP_INTEGRATOR_PATH;
+        prepared_ = prepare_scene(scene, path);
+        light_of_.assign(scene.triangle_count(), CLP_NO_LIGHT);
+        for (const auto& t : prepared_->accel.triangles) light_of_[t.prim] = t.light;
+        camera_ = camera_data(scene.camera);
+        width_ = scene.camera.width;
+        height_ = scene.camera.height;
+        vertices_ = scene.vertices;
+
+        threads_ = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+        device_ = rtcNewDevice(("threads=" + std::to_string(threads_)).c_str());
+        if (!device_) throw Error("Embree: cannot create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+        scene_ = rtcNewScene(device_);
+        // Robust mode: watertight edges, as the kernels' triangle test.
+        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+        RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+        rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
+        const std::size_t n = scene.triangle_count();
+        auto* v = static_cast<float*>(
+            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
+        auto* idx = static_cast<unsigned*>(
+            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
+        check_device(device_, "allocating the geometry");
+        for (std::size_t i = 0; i < 3 * n; ++i) {
+            v[3 * i] = vertices_[i].x;
+            v[3 * i + 1] = vertices_[i].y;
+            v[3 * i + 2] = vertices_[i].z;
+            idx[i] = unsigned(i);
+        }
+        rtcCommitGeometry(geom);
+        rtcAttachGeometry(scene_, geom);
+        rtcReleaseGeometry(geom);
+        rtcCommitScene(scene_);
+        check_device(device_, "building the scene");
+    }
+    ~Tracer() override {
+        if (scene_) rtcReleaseScene(scene_);
+        if (device_) rtcReleaseDevice(device_);
+    }
+
+    EmbreePathRun render(std::uint32_t spp, std::uint32_t seed) override {
+        EmbreePathRun run;
+        PathSums& out = run.sums;
+        out.width = width_;
+        out.height = height_;
+        out.spp = spp;
+        out.sum.assign(std::size_t(width_) * height_ * 3, 0.0);
+        out.sum_sq.assign(out.sum.size(), 0.0);
+        const int tiles_x = (width_ + kTile - 1) / kTile, tiles = tiles_x * ((height_ + kTile - 1) / kTile);
+        std::atomic<int> next{0};
+        std::atomic<std::uint64_t> rays{0}, nonfinite{0};
+        auto work = [&] {
+            std::uint64_t my_rays = 0, my_nonfinite = 0;
+            for (int tile; (tile = next.fetch_add(1)) < tiles;) {
+                const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
+                for (int py = y0; py < std::min(height_, y0 + kTile); ++py)
+                    for (int px = x0; px < std::min(width_, x0 + kTile); ++px) {
+                        const std::uint32_t pixel = std::uint32_t(py) * std::uint32_t(width_) + std::uint32_t(px);
+                        double s[3] = {0, 0, 0}, s2[3] = {0, 0, 0};
+                        for (std::uint32_t k = 0; k < spp; ++k) {
+                            cpu::Rng rng = cpu::rng_seed(pixel, k, seed);
+                            const float jx = rng.next(), jy = rng.next();
+                            vec3 L = integrate(cpu::camera_ray(camera_, px, py, jx, jy), rng, my_rays);
+                            if (!std::isfinite(L.x) || !std::isfinite(L.y) || !std::isfinite(L.z)) {
+                                ++my_nonfinite;
+                                L = vec3(0.0f);
+                            }
+                            for (int c = 0; c < 3; ++c) {
+                                s[c] += L[c];
+                                s2[c] += double(L[c]) * L[c];
+                            }
+                        }
+                        for (int c = 0; c < 3; ++c) {
+                            out.sum[3 * pixel + c] = s[c];
+                            out.sum_sq[3 * pixel + c] = s2[c];
+                        }
+                    }
+            }
+            rays += my_rays;
+            nonfinite += my_nonfinite;
+        };
+        const auto t0 = std::chrono::steady_clock::now();
+        std::vector<std::thread> pool;
+        try {
+            for (int i = 1; i < threads_; ++i) pool.emplace_back(work);
+        } catch (const std::system_error& e) {
+            for (auto& th : pool) th.join();
+            throw Error(std::string("Embree path tracer: cannot start a thread (") + e.what() + ")");
+        }
+        work();
+        for (auto& th : pool) th.join();
+        run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        check_device(device_, "tracing");
+        run.rays = rays;
+        run.nonfinite = nonfinite;
+        return run;
+    }
+
+    std::string describe() const override {
+        return std::string("Embree ") + RTC_VERSION_STRING + ", " + std::to_string(threads_) + " thread" +
+               (threads_ == 1 ? "" : "s") + " on " + cpu_model_name() +
+               ", rtcIntersect1/rtcOccluded1 single rays, robust high-quality BVH";
+    }
+
+private:
+    struct Hit {
+        bool hit = false;
+        float t = 0, b1 = 0, b2 = 0;
+        std::uint32_t prim = 0;
+    };
+
+    Hit closest(const cpu::Ray& r, std::uint64_t& rays) const {
+        ++rays;
+        RTCRayHit rh;
+        rh.ray.org_x = r.o.x;
+        rh.ray.org_y = r.o.y;
+        rh.ray.org_z = r.o.z;
+        rh.ray.dir_x = r.d.x;
+        rh.ray.dir_y = r.d.y;
+        rh.ray.dir_z = r.d.z;
+        rh.ray.tnear = self_tnear(r.o, r.d);
+        rh.ray.tfar = INFINITY;
+        rh.ray.time = 0;
+        rh.ray.mask = ~0u;
+        rh.ray.id = 0;
+        rh.ray.flags = 0;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        rtcIntersect1(scene_, &ctx, &rh);
+        Hit h;
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+        h.hit = true;
+        h.t = rh.ray.tfar;
+        h.b1 = rh.hit.u;  // Embree's (u, v) weigh v1 and v2, as the kernels' (b1, b2)
+        h.b2 = rh.hit.v;
+        h.prim = rh.hit.primID;
+        return h;
+    }
+
+    // Anything on o + t d for t up to tmax (d need not be unit).
+    bool occluded(vec3 o, vec3 d, float tmax, std::uint64_t& rays) const {
+        ++rays;
+        RTCRay r;
+        r.org_x = o.x;
+        r.org_y = o.y;
+        r.org_z = o.z;
+        r.dir_x = d.x;
+        r.dir_y = d.y;
+        r.dir_z = d.z;
+        r.tnear = self_tnear(o, d);
+        r.tfar = tmax;
+        r.time = 0;
+        r.mask = ~0u;
+        r.id = 0;
+        r.flags = 0;
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        rtcOccluded1(scene_, &ctx, &r);
+        return r.tfar < 0;  // Embree sets -inf on a hit
+    }
+
+    struct Surface {
+        vec3 p, err, ng, ns;
+        bool front = false;
+        const Material* m = nullptr;
+    };
+
+    Surface surface_at(const Hit& h, vec3 d) const {
+        Surface s;
+        const vec3 v0 = vertices_[3 * h.prim], v1 = vertices_[3 * h.prim + 1], v2 = vertices_[3 * h.prim + 2];
+        s.ng = glm::normalize(glm::cross(v1 - v0, v2 - v0));
+        s.front = glm::dot(s.ng, d) < 0.0f;
+        s.p = cpu::hit_point(v0, v1, v2, h.b1, h.b2, s.err);
+        s.m = &prepared_->materials[prepared_->triangle_material[h.prim]];
+        s.ns = s.ng;
+        if (!prepared_->normals.empty()) {
+            const vec3* n = &prepared_->normals[3 * std::size_t(h.prim)];
+            const vec3 ns = (1.0f - h.b1 - h.b2) * n[0] + h.b1 * n[1] + h.b2 * n[2];
+            const float len = glm::length(ns);
+            if (len > 0.0f && std::isfinite(len)) s.ns = ns / len;
+        }
+        return s;
+    }
+
+    // Next-event estimation weighted against BSDF sampling by the power
+    // heuristic (kernels/integrator.cl sample_direct).
+    vec3 sample_direct(const Surface& s, vec3 wo, cpu::Rng& rng, std::uint64_t& rays) const {
+        cpu::LightSample ls;
+        const float u0 = rng.next(), u1 = rng.next(), u2 = rng.next();
+        if (!cpu::sample_light(prepared_->lights.data(), prepared_->light_alias.data(),
+                               std::uint32_t(prepared_->lights.size()), s.p, u0, u1, u2, ls))
+            return vec3(0.0f);
+        float bsdf_pdf;
+        const vec3 f = cpu::diffuse_eval(cpu::vec3_of(s.m->albedo), s.ng, s.ns, wo, ls.wi, bsdf_pdf);
+        if (!(max3(f) > 0.0f) || !(max3(ls.L) > 0.0f)) return vec3(0.0f);
+        const vec3 o = cpu::offset_ray_origin(s.p, s.err, s.ng, ls.wi);
+        if (ls.infinite ? occluded(o, ls.wi, INFINITY, rays) : occluded(o, ls.to - o, 1.0f, rays)) return vec3(0.0f);
+        const float w = ls.delta ? 1.0f : cpu::power_heuristic(ls.pdf, bsdf_pdf);
+        return f * ls.L * (w / ls.pdf);
+    }
+
+    // kernels/integrator.cl integrate() for the path integrator, diffuse
+    // surfaces, no environment, no Russian roulette.
+    vec3 integrate(cpu::Ray ray, cpu::Rng& rng, std::uint64_t& rays) const {
+        vec3 L(0.0f), beta(1.0f);
+        float prev_pdf = 0.0f;
+        vec3 prev_p = ray.o;
+        bool prev_delta = true;  // what a camera ray sees directly is never light-sampled
+        for (std::uint32_t depth = 0;; ++depth) {
+            const Hit h = closest(ray, rays);
+            if (!h.hit) break;
+            const Surface s = surface_at(h, ray.d);
+            const Material& m = *s.m;
+            const bool emits_here = s.front || (m.flags & CLP_MATF_TWO_SIDED_EMISSION);
+            const vec3 Le = emits_here ? cpu::vec3_of(m.emission) : vec3(0.0f);
+            if (max3(Le) > 0.0f) {
+                float w = 1.0f;
+                const std::uint32_t li = light_of_[h.prim];
+                if (!prev_delta && li != CLP_NO_LIGHT)
+                    w = cpu::power_heuristic(prev_pdf, prepared_->light_alias[li].pmf *
+                                                           cpu::triangle_sample_pdf(prepared_->lights[li], prev_p, ray.d, h.t));
+                L += beta * w * Le;
+            }
+            const bool scatters = m.albedo[0] > 0.0f || m.albedo[1] > 0.0f || m.albedo[2] > 0.0f;
+            if (depth >= max_depth_ || !scatters) break;
+            const vec3 wo = -ray.d;
+            if (!prepared_->lights.empty()) L += beta * sample_direct(s, wo, rng, rays);
+            const float u1 = rng.next(), u2 = rng.next();
+            rng.next();  // the kernels draw a third number for every BSDF (diffuse ignores it)
+            float pdf;
+            const vec3 wi = cpu::diffuse_sample(s.ng, s.ns, wo, u1, u2, pdf);
+            // A reflection that points below the geometric surface ends the path.
+            if (!(glm::dot(wi, s.ng) * glm::dot(wo, s.ng) > 0.0f)) break;
+            beta *= cpu::vec3_of(m.albedo);
+            prev_pdf = pdf;
+            prev_delta = false;
+            prev_p = s.p;
+            ray.o = cpu::offset_ray_origin(s.p, s.err, s.ng, wi);
+            ray.d = wi;
+        }
+        return L;
+    }
+
+    std::uint32_t max_depth_;
+    std::shared_ptr<const PreparedScene> prepared_;
+    std::vector<std::uint32_t> light_of_;  // per scene triangle: its light, or CLP_NO_LIGHT
+    std::vector<vec3> vertices_;
+    CameraData camera_{};
+    int width_ = 0, height_ = 0;
+    int threads_ = 1;
+    RTCDevice device_ = nullptr;
+    RTCScene scene_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene& scene, std::uint32_t max_depth, int threads) {
+    return std::make_unique<Tracer>(scene, max_depth, threads);
+}
+
+#endif
+
+}  // namespace clpath

@@ -1,0 +1,106 @@
+#include "bench/path_bench.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "render/renderer.hpp"
+#include "util/error.hpp"
+
+namespace clpath {
+
+double PathRound::samples_ratio() const {
+    return embree.msamples_per_s > 0 ? clpath.msamples_per_s / embree.msamples_per_s : 0;
+}
+double PathRound::rays_ratio() const { return embree.mrays_per_s > 0 ? clpath.mrays_per_s / embree.mrays_per_s : 0; }
+
+double median_of(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+namespace {
+
+PathTiming timing(double seconds, std::uint64_t rays, std::uint64_t nonfinite, double samples) {
+    PathTiming t;
+    t.seconds = seconds;
+    t.rays = rays;
+    t.nonfinite = nonfinite;
+    t.msamples_per_s = seconds > 0 ? samples / seconds * 1e-6 : 0;
+    t.mrays_per_s = seconds > 0 ? double(rays) / seconds * 1e-6 : 0;
+    return t;
+}
+
+}  // namespace
+
+PathBenchResult run_path_bench(Context& ctx, const Scene& scene, const PathBenchOptions& o,
+                               const std::function<void(const std::string&)>& log) {
+    const auto why = embree_path_unsupported(scene);
+    if (!why.empty()) {
+        std::string all;
+        for (const auto& w : why) all += (all.empty() ? "" : "; ") + w;
+        throw UsageError("bench path supports diffuse surfaces lit by emissive triangles and point, spot or "
+                         "directional lights only; unsupported here: " + all);
+    }
+    if (!embree_path_built_in())
+        throw Error("bench path needs Embree, and this clpath was built without it (install libembree-dev and "
+                    "configure again with -DCLPATH_WITH_EMBREE=ON)");
+    if (o.rounds < 1) throw Error("bench path: rounds must be at least 1");
+    if (o.spp < 2) throw Error("bench path: the agreement check needs at least 2 samples per pixel");
+
+    PathBenchResult r;
+    r.scene = scene.name;
+    r.triangles = scene.triangle_count();
+    r.width = scene.camera.width;
+    r.height = scene.camera.height;
+    r.spp = o.spp;
+    r.max_depth = o.max_depth;
+    r.clpath_device = ctx.device().describe();
+
+    // What `clpath render --max-depth D --rr none` runs: the path integrator
+    // (NEE + MIS), cosine-weighted bounces, the scene's BVH options.
+    RenderSettings settings = settings_from_scene(scene.render);
+    settings.integrator = CLP_INTEGRATOR_PATH;
+    settings.max_depth = o.max_depth;
+    settings.rr_rule = CLP_RR_NONE;
+    settings.hemisphere = kHemisphereCosine;
+    settings.seed = o.seed;
+    if (log) log("compiling and uploading for " + r.clpath_device);
+    Renderer renderer(ctx, scene, settings);
+    renderer.add_samples(1);  // warm-up: a device may finish compiling at the first launch
+    auto tracer = make_embree_path_tracer(scene, o.max_depth, o.threads);
+    r.embree = tracer->describe();
+    tracer->render(1, o.seed + 1);  // warm-up, as the device's
+
+    const double samples = double(o.spp) * r.width * r.height;
+    Image clpath_image;
+    PathSums embree_sums;
+    for (int round = 0; round < o.rounds; ++round) {
+        PathRound pr;
+        renderer.reset();
+        renderer.add_samples(o.spp);
+        const RenderStats st = renderer.stats();
+        pr.clpath = timing(st.render_seconds, st.rays, st.nonfinite, samples);
+        EmbreePathRun er = tracer->render(o.spp, o.seed + 1);
+        pr.embree = timing(er.seconds, er.rays, er.nonfinite, samples);
+        if (round + 1 == o.rounds) {
+            clpath_image = renderer.resolve(1.0f).linear;
+            embree_sums = std::move(er.sums);
+        }
+        if (log) {
+            char buf[300];
+            std::snprintf(buf, sizeof buf,
+                          "round %d: clpath %.3f s, %.3f Msamples/s, %.3f Mrays/s; Embree %.3f s, %.3f Msamples/s, "
+                          "%.3f Mrays/s; clpath/Embree %.3f (Mrays/s)",
+                          round + 1, pr.clpath.seconds, pr.clpath.msamples_per_s, pr.clpath.mrays_per_s,
+                          pr.embree.seconds, pr.embree.msamples_per_s, pr.embree.mrays_per_s, pr.rays_ratio());
+            log(buf);
+        }
+        r.rounds.push_back(pr);
+    }
+    r.agreement = check_path_agreement(clpath_image, o.spp, embree_sums, o.grid);
+    return r;
+}
+
+}  // namespace clpath

@@ -1,0 +1,59 @@
+#pragma once
+// clpath bench path: clpath's renderer (the `path` integrator at a fixed
+// depth, no Russian roulette, on an OpenCL device) and the Embree path tracer
+// (bench/embree_path_tracer.hpp) render the same scene in interleaved rounds;
+// their speeds, and whether their images agree within their noise
+// (bench/path_agreement.hpp).
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bench/path_agreement.hpp"
+#include "cl/context.hpp"
+#include "scene/scene.hpp"
+
+namespace clpath {
+
+struct PathBenchOptions {
+    std::uint32_t spp = 16;
+    std::uint32_t max_depth = 4;
+    int rounds = 3;
+    // clpath renders with this seed, Embree with seed + 1: independent streams,
+    // as the agreement check assumes.
+    std::uint32_t seed = 0;
+    int threads = 0;  // Embree's; 0: every hardware thread
+    int grid = 4;     // regions per side for the agreement check
+};
+
+// One tracer's run in one round.
+struct PathTiming {
+    double seconds = 0;
+    std::uint64_t rays = 0, nonfinite = 0;
+    double msamples_per_s = 0, mrays_per_s = 0;
+};
+
+struct PathRound {
+    PathTiming clpath, embree;
+    double samples_ratio() const;  // clpath / Embree, Msamples/s
+    double rays_ratio() const;     // clpath / Embree, Mrays/s
+};
+
+struct PathBenchResult {
+    std::string scene, clpath_device, embree;
+    std::size_t triangles = 0;
+    int width = 0, height = 0;
+    std::uint32_t spp = 0, max_depth = 0;
+    std::vector<PathRound> rounds;
+    PathAgreement agreement;  // of the last round's two images
+};
+
+// Median of the values (the mean of the middle two for an even count); 0 for none.
+double median_of(std::vector<double> v);
+
+// Throws clpath::UsageError when the scene is one the Embree tracer cannot
+// render as clpath does, clpath::Error when Embree is not built in or a step fails.
+PathBenchResult run_path_bench(Context& ctx, const Scene& scene, const PathBenchOptions& options,
+                               const std::function<void(const std::string&)>& log);
+
+}  // namespace clpath
