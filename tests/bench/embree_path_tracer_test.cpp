@@ -1,0 +1,128 @@
+// The Embree path tracer of clpath bench path computes what clpath's renderer
+// computes (`render --max-depth D --rr none`): its image agrees with the
+// kernels' within the z-score bound of bench/path_agreement.hpp (false
+// failure below 1e-6 per check), and the same check rejects a tracer that
+// computes something else (a light twice as bright, two bounces fewer).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "bench/embree_path_tracer.hpp"
+#include "bench/path_agreement.hpp"
+#include "render/renderer.hpp"
+#include "scene/scene_loader.hpp"
+#include "support/test_device.hpp"
+#include "util/error.hpp"
+
+namespace clpath {
+namespace {
+
+std::string scene_file(const std::string& name) {
+    return (std::filesystem::path(__FILE__).parent_path() / ".." / ".." / "scenes" / (name + ".json")).lexically_normal().string();
+}
+
+// Small enough for seconds on two cores; the regions hold 8 x 8 pixels of 64 samples.
+Scene tiny(const std::string& name) {
+    Scene s = load_scene(scene_file(name));
+    s.camera.width = 24;
+    s.camera.height = 24;
+    return s;
+}
+
+constexpr std::uint32_t kSpp = 64;
+
+// clpath's mean image: the path integrator at a fixed depth without roulette, seed 0.
+Image clpath_image(const Scene& scene, std::uint32_t depth) {
+    RenderSettings settings;
+    settings.integrator = CLP_INTEGRATOR_PATH;
+    settings.max_depth = depth;
+    settings.rr_rule = CLP_RR_NONE;
+    settings.seed = 0;
+    Renderer r(test::device(), scene, settings);
+    r.add_samples(kSpp);
+    return r.resolve(1.0f).linear;
+}
+
+PathAgreement embree_against(const Image& clpath, const Scene& scene, std::uint32_t depth) {
+    auto tracer = make_embree_path_tracer(scene, depth, 2);
+    const EmbreePathRun run = tracer->render(kSpp, 1);  // another stream than clpath's seed 0
+    EXPECT_EQ(run.nonfinite, 0u);
+    return check_path_agreement(clpath, kSpp, run.sums, 3);
+}
+
+#define SKIP_WITHOUT_EMBREE() \
+    if (!embree_path_built_in()) GTEST_SKIP() << "built without Embree (CLPATH_WITH_EMBREE off or libembree-dev missing)"
+
+TEST(EmbreePathTracer, PointLightCornellAgreesWithClpath) {
+    SKIP_WITHOUT_EMBREE();
+    const Scene scene = tiny("cornell-point");
+    const Image clpath = clpath_image(scene, 4);
+    const PathAgreement same = embree_against(clpath, scene, 4);
+    EXPECT_TRUE(same.agrees()) << same.describe();
+
+    // Controls: the same check on a tracer computing something else.
+    Scene brighter = scene;
+    brighter.lights[0].intensity *= 2.0f;
+    const PathAgreement twice = embree_against(clpath, brighter, 4);
+    EXPECT_FALSE(twice.agrees()) << "a light twice as bright passed: " << twice.describe();
+    const PathAgreement shallow = embree_against(clpath, scene, 2);
+    EXPECT_FALSE(shallow.agrees()) << "depth 2 against depth 4 passed: " << shallow.describe();
+}
+
+// An area light: light sampling weighted against BSDF sampling by MIS, as the kernels.
+TEST(EmbreePathTracer, AreaLightCornellAgreesWithClpath) {
+    SKIP_WITHOUT_EMBREE();
+    const Scene scene = tiny("cornell-classic");
+    const Image clpath = clpath_image(scene, 4);
+    const PathAgreement same = embree_against(clpath, scene, 4);
+    EXPECT_TRUE(same.agrees()) << same.describe();
+
+    Scene brighter = scene;
+    for (auto& m : brighter.materials)
+        for (float& e : m.emission) e *= 2.0f;
+    const PathAgreement twice = embree_against(clpath, brighter, 4);
+    EXPECT_FALSE(twice.agrees()) << "a lamp twice as bright passed: " << twice.describe();
+}
+
+TEST(EmbreePathTracer, CountsRaysAsTheKernelsDo) {
+    SKIP_WITHOUT_EMBREE();
+    // Depth 0: one camera ray per sample and nothing else, in both.
+    const Scene scene = tiny("cornell-point");
+    auto tracer = make_embree_path_tracer(scene, 0, 2);
+    const EmbreePathRun run = tracer->render(4, 1);
+    EXPECT_EQ(run.rays, 4u * 24u * 24u);
+    RenderSettings settings;
+    settings.max_depth = 0;
+    settings.rr_rule = CLP_RR_NONE;
+    Renderer r(test::device(), scene, settings);
+    r.add_samples(4);
+    EXPECT_EQ(r.stats().rays, run.rays);
+}
+
+TEST(EmbreePathTracer, RefusesWhatItCannotRender) {
+    // cornell-thesis has a glossy conductor and glass.
+    const Scene thesis = load_scene(scene_file("cornell-thesis"));
+    const auto why = embree_path_unsupported(thesis);
+    std::string all;
+    for (const auto& w : why) all += w + "\n";
+    EXPECT_NE(all.find("material 'glass' is a dielectric"), std::string::npos) << all;
+    EXPECT_NE(all.find("material 'glossy' is a conductor"), std::string::npos) << all;
+    EXPECT_TRUE(embree_path_unsupported(tiny("cornell-point")).empty());
+    Scene sky = tiny("cornell-point");
+    sky.environment.color = glm::vec3(1.0f);
+    ASSERT_EQ(embree_path_unsupported(sky).size(), 1u);
+    EXPECT_NE(embree_path_unsupported(sky)[0].find("environment"), std::string::npos);
+    if (embree_path_built_in()) {
+        EXPECT_THROW(make_embree_path_tracer(thesis, 4), Error);
+    }
+}
+
+TEST(PathAgreement, BonferroniBound) {
+    // P(|Z| > 4.8916) = 1e-6; with 51 tests each gets 1e-6 / 51.
+    EXPECT_NEAR(bonferroni_z_bound(1e-6, 1), 4.8916, 1e-3);
+    EXPECT_NEAR(std::erfc(bonferroni_z_bound(1e-6, 51) / std::sqrt(2.0)), 1e-6 / 51, 1e-12);
+}
+
+}  // namespace
+}  // namespace clpath

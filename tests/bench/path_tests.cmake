@@ -1,0 +1,21 @@
+# clpath bench path from the command line. Included from tests/CMakeLists.txt
+# after cli/cli_tests.cmake (it uses clpath_cli_test and CLI_OUT from there).
+set(POINT_CORNELL ${CMAKE_SOURCE_DIR}/scenes/cornell-point.json)
+
+if(CLPATH_WITH_EMBREE)
+    # Both tracers at 32x32, their speeds and the agreement of their images.
+    clpath_cli_test(bench.path_quick ARGS bench path ${POINT_CORNELL} --quick --csv ${CLI_OUT}/path.csv
+                    OUTPUT "clpath/Embree: [0-9.]+ \\(Msamples/s\\), [0-9.]+ \\(Mrays/s\\).*agreement .*: agree\n")
+else()
+    clpath_cli_test(bench.path_without_embree FAIL ARGS bench path ${POINT_CORNELL} --quick
+                    OUTPUT "clpath: error: bench path needs Embree, and this clpath was built without it")
+endif()
+
+# A scene the Embree tracer cannot render as clpath does: exit 2 and the
+# reason, before any device is opened.
+add_test(NAME cli.bench.path_unsupported_scene
+         COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:clpath>;bench;path;${CMAKE_SOURCE_DIR}/scenes/cornell-thesis.json;--quick"
+                 -DEXPECT_FAIL=1 -DEXPECT_RC=2
+                 "-DEXPECT_OUTPUT=clpath: error: .*cornell-thesis.json: bench path supports diffuse surfaces .*material 'glass' is a dielectric"
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/expect.cmake)
+set_tests_properties(cli.bench.path_unsupported_scene PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 300)
