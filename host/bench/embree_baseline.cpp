@@ -12,6 +12,8 @@
 #include <thread>
 
 #include <embree3/rtcore.h>
+
+#include "bench/embree_scene.hpp"
 #endif
 
 namespace clpath {
@@ -31,11 +33,6 @@ namespace {
 // Rays handed to Embree per call (rtcIntersect1M / rtcOccluded1M: a stream of
 // single rays, which Embree may reorder into packets internally).
 constexpr std::size_t kBlock = 256;
-
-void check_device(RTCDevice device, const char* what) {
-    const RTCError e = rtcGetDeviceError(device);
-    if (e != RTC_ERROR_NONE) throw Error(std::string("Embree: ") + what + " failed (error " + std::to_string(int(e)) + ")");
-}
 
 // Embree has no guard against the surface a ray leaves, and a secondary ray
 // here can start exactly on it (kernels/intersect.cl hit_point): Embree then
@@ -66,41 +63,7 @@ void init_ray(RTCRay& r, const BatchRay& b) {
 
 class Baseline final : public EmbreeBaseline {
 public:
-    Baseline(const std::vector<glm::vec3>& vertices, int threads) {
-        threads_ = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
-        device_ = rtcNewDevice(("threads=" + std::to_string(threads_)).c_str());
-        if (!device_) throw Error("Embree: cannot create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
-        const auto t0 = std::chrono::steady_clock::now();
-        scene_ = rtcNewScene(device_);
-        // Robust mode: watertight edges, as the device's and the reference's triangle tests.
-        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-        rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-        RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-        rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
-        const std::size_t n = vertices.size() / 3;
-        // Embree's own buffers: it pads them for its 16-byte loads.
-        auto* v = static_cast<float*>(
-            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
-        auto* idx = static_cast<unsigned*>(
-            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
-        check_device(device_, "allocating the geometry");
-        for (std::size_t i = 0; i < 3 * n; ++i) {
-            v[3 * i] = vertices[i].x;
-            v[3 * i + 1] = vertices[i].y;
-            v[3 * i + 2] = vertices[i].z;
-            idx[i] = unsigned(i);
-        }
-        rtcCommitGeometry(geom);
-        rtcAttachGeometry(scene_, geom);
-        rtcReleaseGeometry(geom);
-        rtcCommitScene(scene_);
-        check_device(device_, "building the scene");
-        build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    }
-    ~Baseline() override {
-        if (scene_) rtcReleaseScene(scene_);
-        if (device_) rtcReleaseDevice(device_);
-    }
+    Baseline(const std::vector<glm::vec3>& vertices, int threads) : embree_(vertices, threads) {}
 
     EmbreeTiming closest(const std::vector<BatchRay>& rays, int passes, std::vector<std::int64_t>& prim,
                          std::vector<float>& t) override {
@@ -115,7 +78,7 @@ public:
             }
             RTCIntersectContext ctx;
             rtcInitIntersectContext(&ctx);
-            rtcIntersect1M(scene_, &ctx, rh, unsigned(e - b), sizeof(RTCRayHit));
+            rtcIntersect1M(embree_.scene(), &ctx, rh, unsigned(e - b), sizeof(RTCRayHit));
             for (std::size_t i = b; i < e; ++i) {
                 const RTCRayHit& h = rh[i - b];
                 prim[i] = h.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1 : std::int64_t(h.hit.primID);
@@ -131,7 +94,7 @@ public:
             for (std::size_t i = b; i < e; ++i) init_ray(r[i - b], rays[i]);
             RTCIntersectContext ctx;
             rtcInitIntersectContext(&ctx);
-            rtcOccluded1M(scene_, &ctx, r, unsigned(e - b), sizeof(RTCRay));
+            rtcOccluded1M(embree_.scene(), &ctx, r, unsigned(e - b), sizeof(RTCRay));
             for (std::size_t i = b; i < e; ++i) occluded[i] = r[i - b].tfar < 0;  // Embree sets -inf on a hit
         });
     }
@@ -139,15 +102,12 @@ public:
     std::string describe() const override {
         char buf[200];
         std::snprintf(buf, sizeof buf, "Embree %s, robust triangles, high-quality BVH, %d thread%s, built in %.0f ms",
-                      RTC_VERSION_STRING, threads_, threads_ == 1 ? "" : "s", build_ms_);
+                      RTC_VERSION_STRING, embree_.threads(), embree_.threads() == 1 ? "" : "s", embree_.build_ms());
         return buf;
     }
 
 private:
-    RTCDevice device_ = nullptr;
-    RTCScene scene_ = nullptr;
-    int threads_ = 1;
-    double build_ms_ = 0;
+    EmbreeScene embree_;
 
     // One warm-up pass and `passes` timed ones; each pass: the threads take blocks of kBlock rays in turn.
     template <class Trace>
@@ -161,7 +121,7 @@ private:
             const auto t0 = std::chrono::steady_clock::now();
             std::vector<std::thread> pool;
             try {
-                for (int i = 1; i < threads_; ++i) pool.emplace_back(work);
+                for (int i = 1; i < embree_.threads(); ++i) pool.emplace_back(work);
             } catch (const std::system_error& e) {
                 for (auto& th : pool) th.join();
                 throw Error(std::string("Embree baseline: cannot start a thread (") + e.what() + ")");
@@ -171,7 +131,7 @@ private:
             const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
             if (p > 0) timing.pass_ms.push_back(ms);
         }
-        check_device(device_, "tracing");
+        embree_.check("tracing");
         double sum = 0;
         timing.best_ms = timing.pass_ms.empty() ? 0 : timing.pass_ms[0];
         for (double ms : timing.pass_ms) {

@@ -16,6 +16,7 @@
 #include <embree3/rtcore.h>
 
 #include "bench/cpu_estimator.hpp"
+#include "bench/embree_scene.hpp"
 #endif
 
 namespace clpath {
@@ -73,11 +74,6 @@ namespace {
 using cpu::max3;
 using glm::vec3;
 
-void check_device(RTCDevice device, const char* what) {
-    const RTCError e = rtcGetDeviceError(device);
-    if (e != RTC_ERROR_NONE) throw Error(std::string("Embree: ") + what + " failed (error " + std::to_string(int(e)) + ")");
-}
-
 // Embree has no guard against the surface a ray leaves: a ray whose origin
 // lies exactly on it (the kernels' offset_ray_origin moves an origin on an
 // axis-aligned face by no more than one ulp) would see that surface at t = 0.
@@ -111,39 +107,9 @@ public:
         width_ = scene.camera.width;
         height_ = scene.camera.height;
         vertices_ = scene.vertices;
+        embree_ = std::make_unique<EmbreeScene>(vertices_, threads);
 
-        threads_ = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
-        device_ = rtcNewDevice(("threads=" + std::to_string(threads_)).c_str());
-        if (!device_) throw Error("Embree: cannot create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
-        scene_ = rtcNewScene(device_);
-        // Robust mode: watertight edges, as the kernels' triangle test.
-        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-        rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-        RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-        rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
-        const std::size_t n = scene.triangle_count();
-        auto* v = static_cast<float*>(
-            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
-        auto* idx = static_cast<unsigned*>(
-            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
-        check_device(device_, "allocating the geometry");
-        for (std::size_t i = 0; i < 3 * n; ++i) {
-            v[3 * i] = vertices_[i].x;
-            v[3 * i + 1] = vertices_[i].y;
-            v[3 * i + 2] = vertices_[i].z;
-            idx[i] = unsigned(i);
-        }
-        rtcCommitGeometry(geom);
-        rtcAttachGeometry(scene_, geom);
-        rtcReleaseGeometry(geom);
-        rtcCommitScene(scene_);
-        check_device(device_, "building the scene");
     }
-    ~Tracer() override {
-        if (scene_) rtcReleaseScene(scene_);
-        if (device_) rtcReleaseDevice(device_);
-    }
-
     EmbreePathRun render(std::uint32_t spp, std::uint32_t seed) override {
         EmbreePathRun run;
         PathSums& out = run.sums;
@@ -188,7 +154,7 @@ public:
         const auto t0 = std::chrono::steady_clock::now();
         std::vector<std::thread> pool;
         try {
-            for (int i = 1; i < threads_; ++i) pool.emplace_back(work);
+            for (int i = 1; i < embree_->threads(); ++i) pool.emplace_back(work);
         } catch (const std::system_error& e) {
             for (auto& th : pool) th.join();
             throw Error(std::string("Embree path tracer: cannot start a thread (") + e.what() + ")");
@@ -196,15 +162,15 @@ public:
         work();
         for (auto& th : pool) th.join();
         run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        check_device(device_, "tracing");
+        embree_->check("tracing");
         run.rays = rays;
         run.nonfinite = nonfinite;
         return run;
     }
 
     std::string describe() const override {
-        return std::string("Embree ") + RTC_VERSION_STRING + ", " + std::to_string(threads_) + " thread" +
-               (threads_ == 1 ? "" : "s") + " on " + cpu_model_name() +
+        return std::string("Embree ") + RTC_VERSION_STRING + ", " + std::to_string(embree_->threads()) + " thread" +
+               (embree_->threads() == 1 ? "" : "s") + " on " + cpu_model_name() +
                ", rtcIntersect1/rtcOccluded1 single rays, robust high-quality BVH";
     }
 
@@ -234,7 +200,7 @@ private:
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
-        rtcIntersect1(scene_, &ctx, &rh);
+        rtcIntersect1(embree_->scene(), &ctx, &rh);
         Hit h;
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
         h.hit = true;
@@ -263,7 +229,7 @@ private:
         r.flags = 0;
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
-        rtcOccluded1(scene_, &ctx, &r);
+        rtcOccluded1(embree_->scene(), &ctx, &r);
         return r.tfar < 0;  // Embree sets -inf on a hit
     }
 
@@ -355,9 +321,7 @@ private:
     std::vector<vec3> vertices_;
     CameraData camera_{};
     int width_ = 0, height_ = 0;
-    int threads_ = 1;
-    RTCDevice device_ = nullptr;
-    RTCScene scene_ = nullptr;
+    std::unique_ptr<EmbreeScene> embree_;
 };
 
 }  // namespace

@@ -1,0 +1,56 @@
+#include "bench/embree_scene.hpp"
+
+#if CLPATH_WITH_EMBREE
+#include <algorithm>
+#include <chrono>
+#include <string>
+#include <thread>
+
+#include "util/error.hpp"
+
+namespace clpath {
+
+EmbreeScene::EmbreeScene(const std::vector<glm::vec3>& vertices, int threads) {
+    threads_ = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    device_ = rtcNewDevice(("threads=" + std::to_string(threads_)).c_str());
+    if (!device_) throw Error("Embree: cannot create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+    const auto t0 = std::chrono::steady_clock::now();
+    scene_ = rtcNewScene(device_);
+    // Robust mode: watertight edges, as the kernels' and the CPU reference's triangle tests.
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
+    const std::size_t n = vertices.size() / 3;
+    // Embree's own buffers: it pads them for its 16-byte loads.
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
+    auto* idx = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
+    check("allocating the geometry");
+    for (std::size_t i = 0; i < 3 * n; ++i) {
+        v[3 * i] = vertices[i].x;
+        v[3 * i + 1] = vertices[i].y;
+        v[3 * i + 2] = vertices[i].z;
+        idx[i] = unsigned(i);
+    }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene_, geom);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(scene_);
+    check("building the scene");
+    build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+EmbreeScene::~EmbreeScene() {
+    if (scene_) rtcReleaseScene(scene_);
+    if (device_) rtcReleaseDevice(device_);
+}
+
+void EmbreeScene::check(const char* what) const {
+    const RTCError e = rtcGetDeviceError(device_);
+    if (e != RTC_ERROR_NONE) throw Error(std::string("Embree: ") + what + " failed (error " + std::to_string(int(e)) + ")");
+}
+
+}  // namespace clpath
+#endif
