@@ -10,7 +10,7 @@ fi
 # libclang-rt-14-dev holds libFuzzer and the sanitizer runtimes for the fuzz tests;
 # clang only recommends it, and recommends are not installed here.
 # xauth: xvfb-run (the viewer tests) needs it; xvfb only recommends it.
-# libembree-dev: the CPU baseline of clpath bench rays (optional at build time).
+# libembree-dev: the CPU baselines of clpath bench rays and bench path (optional at build time).
 # libopenmpi-dev, openmpi-bin: rendering over MPI ranks (optional at build
 # time, but the test suite checks it).
 # oclgrind: a second OpenCL implementation, a simulator that checks every kernel
