@@ -2,12 +2,13 @@
 # Path tracing against Embree: `clpath bench path` (clpath's renderer on the
 # OpenCL device and an Embree 3 path tracer with the same estimator on every
 # hardware thread, interleaved rounds, images checked to agree) on the
-# point-light Cornell box and cornell-classic (area light, NEE + MIS), at
+# point-light Cornell box, cornell-classic (area light, NEE + MIS) and bunny
+# (70k triangles, shading normals, two-sided area light), at
 # 512x512 and depth 4 without Russian roulette.
 # Usage: benchmarks/path_embree/run.sh [RESULT_DIR_NAME] [BUILD_DIR]
 #   writes benchmarks/results/RESULT_DIR_NAME/path-embree/{README.md,<scene>.txt,<scene>.csv}
 # Environment: ROUNDS (3), SPP (16), DEPTH (4), SIZE (512), DEVICE (OpenCL device; default: the first),
-#   SCENES ("scenes/cornell-point.json scenes/cornell-classic.json"), NOTE (a line on the machine's
+#   SCENES ("scenes/cornell-point.json scenes/cornell-classic.json scenes/bunny.json"), NOTE (a line on the machine's
 #   state for the README, e.g. "shared machine": the load averages are recorded either way).
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
@@ -19,7 +20,7 @@ ROUNDS=${ROUNDS:-3}
 SPP=${SPP:-16}
 DEPTH=${DEPTH:-4}
 SIZE=${SIZE:-512}
-SCENES=${SCENES:-"$ROOT/scenes/cornell-point.json $ROOT/scenes/cornell-classic.json"}
+SCENES=${SCENES:-"$ROOT/scenes/cornell-point.json $ROOT/scenes/cornell-classic.json $ROOT/scenes/bunny.json"}
 [ -x "$CLPATH" ] || { echo "run.sh: error: $CLPATH: no clpath build there" >&2; exit 1; }
 DEVICE_ARGS=()
 [ -n "${DEVICE:-}" ] && DEVICE_ARGS=(--device "$DEVICE")
