@@ -97,7 +97,8 @@ public:
             throw Error("the Embree path tracer cannot render this scene as clpath does: " + all);
         }
         // The light table, materials and normals exactly as the renderer
-        // uploads them (render/prepared_scene.hpp).
+        // uploads them (render/prepared_scene.hpp); of its BVH only the
+        // triangles' light indices are read (for MIS at emitters).
         RenderSettings path;
         path.integrator = CLP_INTEGRATOR_PATH;
         prepared_ = prepare_scene(scene, path);
@@ -108,8 +109,8 @@ public:
         height_ = scene.camera.height;
         vertices_ = scene.vertices;
         embree_ = std::make_unique<EmbreeScene>(vertices_, threads);
-
     }
+
     EmbreePathRun render(std::uint32_t spp, std::uint32_t seed) override {
         EmbreePathRun run;
         PathSums& out = run.sums;

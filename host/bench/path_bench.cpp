@@ -34,8 +34,7 @@ PathTiming timing(double seconds, std::uint64_t rays, std::uint64_t nonfinite, d
 
 }  // namespace
 
-PathBenchResult run_path_bench(Context& ctx, const Scene& scene, const PathBenchOptions& o,
-                               const std::function<void(const std::string&)>& log) {
+void check_path_bench_scene(const Scene& scene) {
     const auto why = embree_path_unsupported(scene);
     if (!why.empty()) {
         std::string all;
@@ -46,6 +45,11 @@ PathBenchResult run_path_bench(Context& ctx, const Scene& scene, const PathBench
     if (!embree_path_built_in())
         throw Error("bench path needs Embree, and this clpath was built without it (install libembree-dev and "
                     "configure again with -DCLPATH_WITH_EMBREE=ON)");
+}
+
+PathBenchResult run_path_bench(Context& ctx, const Scene& scene, const PathBenchOptions& o,
+                               const std::function<void(const std::string&)>& log) {
+    check_path_bench_scene(scene);
     if (o.rounds < 1) throw Error("bench path: rounds must be at least 1");
     if (o.spp < 2) throw Error("bench path: the agreement check needs at least 2 samples per pixel");
 

@@ -51,8 +51,12 @@ struct PathBenchResult {
 // Median of the values (the mean of the middle two for an even count); 0 for none.
 double median_of(std::vector<double> v);
 
-// Throws clpath::UsageError when the scene is one the Embree tracer cannot
-// render as clpath does, clpath::Error when Embree is not built in or a step fails.
+// Throws clpath::UsageError naming what the Embree tracer cannot render as
+// clpath does (other materials, textures, an environment...), clpath::Error
+// when this build has no Embree. Needs no device.
+void check_path_bench_scene(const Scene& scene);
+
+// Throws what check_path_bench_scene throws, and clpath::Error when a step fails.
 PathBenchResult run_path_bench(Context& ctx, const Scene& scene, const PathBenchOptions& options,
                                const std::function<void(const std::string&)>& log);
 

@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "bench/embree_path_tracer.hpp"
 #include "bench/path_bench.hpp"
 #include "bench/report_files.hpp"
 #include "cl/context.hpp"
@@ -47,16 +46,11 @@ int run_path(const PathOptions& o) {
         bo.rounds = 1;
     }
     // Refused before any device is opened: the scene alone decides.
-    const auto why = embree_path_unsupported(scene);
-    if (!why.empty()) {
-        std::string all;
-        for (const auto& w : why) all += (all.empty() ? "" : "; ") + w;
-        throw UsageError(o.scene + ": bench path supports diffuse surfaces lit by emissive triangles and point, "
-                         "spot or directional lights only; unsupported here: " + all);
+    try {
+        check_path_bench_scene(scene);
+    } catch (const UsageError& e) {
+        throw UsageError(o.scene + ": " + e.what());
     }
-    if (!embree_path_built_in())
-        throw Error("bench path needs Embree, and this clpath was built without it (install libembree-dev and "
-                    "configure again with -DCLPATH_WITH_EMBREE=ON)");
     const DeviceInfo device = select_device(o.device);
     Context ctx(device);
     std::fprintf(stderr, "clpath: bench path '%s' (%zu triangles) at %dx%d, %u spp, depth %u, %d round%s\n",
