@@ -163,8 +163,9 @@ typedef struct {
     uint count[4];
 } Bvh4Node;
 
-/* Every wide level covers at least two binary levels (host/bvh/wide.cpp), so
- * the 4-wide tree is at most half as deep, and a traversal keeps at most
+/* The widening (host/bvh/wide.cpp) keeps the 4-wide tree at most half as
+ * deep as the binary bound (where its first choice would not, it makes every
+ * wide level span two binary levels), and a traversal keeps at most
  * three siblings per level on its stack, plus the one it is about to pop. */
 #define CLP_BVH4_MAX_DEPTH (CLP_BVH_MAX_DEPTH / 2)
 #define CLP_BVH4_STACK (3 * CLP_BVH4_MAX_DEPTH + 1)

@@ -36,32 +36,36 @@ int expand(const std::vector<BvhNode>& binary, Slot* slots, int n, int k) {
     return n + 1;
 }
 
-}  // namespace
-
-std::vector<Bvh4Node> widen_bvh(const std::vector<BvhNode>& binary) {
-    if (binary.empty()) throw std::invalid_argument("cannot widen a BVH with no nodes");
+// The collapse under one rule. LargestFirst gives up (an empty vector) as
+// soon as a node would lie deeper than CLP_BVH4_MAX_DEPTH.
+std::vector<Bvh4Node> widen(const std::vector<BvhNode>& binary, WideningRule rule) {
     std::vector<Bvh4Node> wide(1);
     wide.reserve(binary.size() / 2 + 1);
     struct Item {
-        int binary, wide;
+        int binary, wide, depth;
     };
-    std::vector<Item> stack{{0, 0}};
+    std::vector<Item> stack{{0, 0, 1}};
     while (!stack.empty()) {
         const Item it = stack.back();
         stack.pop_back();
+        if (rule == WideningRule::LargestFirst && it.depth > CLP_BVH4_MAX_DEPTH) return {};
         Slot slots[4];
         int n = 0;
         for (int s = 0; s < 2; ++s) {
             const Slot sl = slot_of(binary[std::size_t(it.binary)], s);
             if (!sl.empty()) slots[n++] = sl;
         }
-        // Every interior child gives way to its own children first, so each
-        // wide level spans two binary levels (the depth bound above).
-        const int first = n;
-        for (int k = 0; k < first; ++k)
-            if (slots[k].interior()) n = expand(binary, slots, n, k);
+        if (rule == WideningRule::TwoLevels) {
+            // Every interior child gives way to its own children first, so
+            // each wide level spans two binary levels.
+            const int first = n;
+            for (int k = 0; k < first; ++k)
+                if (slots[k].interior()) n = expand(binary, slots, n, k);
+        }
         // Then, while there is room, the interior child most likely to be
-        // entered (the largest surface area) is opened.
+        // entered (the largest surface area) is opened: opening a child
+        // saves every ray that enters it one node fetch, and rays enter a
+        // box in proportion to its area (the SAH's geometric argument).
         while (n < 4) {
             int best = -1;
             for (int k = 0; k < n; ++k)
@@ -78,7 +82,7 @@ std::vector<Bvh4Node> widen_bvh(const std::vector<BvhNode>& binary) {
                 out.child[k] = int(wide.size());
                 out.count[k] = 0;
                 wide.emplace_back();
-                stack.push_back({sl.child, out.child[k]});
+                stack.push_back({sl.child, out.child[k], it.depth + 1});
             } else {
                 out.child[k] = sl.child;
                 out.count[k] = sl.count;
@@ -88,6 +92,17 @@ std::vector<Bvh4Node> widen_bvh(const std::vector<BvhNode>& binary) {
         wide[std::size_t(it.wide)] = out;
     }
     return wide;
+}
+
+}  // namespace
+
+std::vector<Bvh4Node> widen_bvh(const std::vector<BvhNode>& binary, WideningRule rule) {
+    if (binary.empty()) throw std::invalid_argument("cannot widen a BVH with no nodes");
+    if (rule == WideningRule::LargestFirst) {
+        std::vector<Bvh4Node> wide = widen(binary, WideningRule::LargestFirst);
+        if (!wide.empty()) return wide;
+    }
+    return widen(binary, WideningRule::TwoLevels);
 }
 
 int check_wide(const std::vector<Bvh4Node>& wide, const Bvh& bvh) {

@@ -3,6 +3,7 @@
 // relies on, and controls showing that the check rejects broken trees.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <random>
 
 #include "bvh/wide.hpp"
@@ -23,14 +24,30 @@ std::vector<glm::vec3> soup(std::size_t n, std::uint32_t seed) {
     return v;
 }
 
+// Both rules' trees pass check_wide; returns the default rule's depth.
 int checked_depth(const Bvh& bvh) {
     const std::vector<Bvh4Node> wide = widen_bvh(bvh.nodes);
     int depth = 0;
     EXPECT_NO_THROW(depth = check_wide(wide, bvh));
     EXPECT_LE(wide.size(), bvh.nodes.size()) << "collapsing never adds nodes";
+    EXPECT_LE(depth, bvh.stats.max_depth) << "each wide level spans at least one binary level";
+    const std::vector<Bvh4Node> two = widen_bvh(bvh.nodes, WideningRule::TwoLevels);
+    int two_depth = 0;
+    EXPECT_NO_THROW(two_depth = check_wide(two, bvh));
+    EXPECT_LE(two.size(), bvh.nodes.size());
     // Each wide level spans two binary ones (root = 1 on both sides).
-    EXPECT_LE(depth, (bvh.stats.max_depth + 1) / 2);
+    EXPECT_LE(two_depth, (bvh.stats.max_depth + 1) / 2);
     return depth;
+}
+
+// Slot `slot` of n: the flat box [lo, hi] in z = 0, and its child and count.
+void set_slot(BvhNode& n, int slot, glm::vec2 lo, glm::vec2 hi, int child, std::uint32_t count) {
+    float* l = slot ? n.lo1 : n.lo0;
+    float* h = slot ? n.hi1 : n.hi0;
+    l[0] = lo.x, l[1] = lo.y, l[2] = 0;
+    h[0] = hi.x, h[1] = hi.y, h[2] = 0;
+    (slot ? n.child1 : n.child0) = child;
+    (slot ? n.count1 : n.count0) = count;
 }
 
 // A binary tree of the given depth that widens as deep as the bound allows:
@@ -101,8 +118,59 @@ TEST(BvhWide, IdenticalTriangles) {
 
 TEST(BvhWide, DeepestBinaryTreeFitsTheStack) {
     const Bvh chain = twig_chain(CLP_BVH_MAX_DEPTH);
+    const std::vector<Bvh4Node> two = widen_bvh(chain.nodes, WideningRule::TwoLevels);
+    EXPECT_EQ(check_wide(two, chain), CLP_BVH4_MAX_DEPTH);
+    // All boxes are equal, so opening the largest child first goes down one
+    // chain link per wide level: too deep, and the default rule falls back.
     const std::vector<Bvh4Node> wide = widen_bvh(chain.nodes);
     EXPECT_EQ(check_wide(wide, chain), CLP_BVH4_MAX_DEPTH);
+    ASSERT_EQ(wide.size(), two.size());
+    EXPECT_EQ(std::memcmp(wide.data(), two.data(), wide.size() * sizeof(Bvh4Node)), 0);
+}
+
+// root = [A, B]; A = [A1, leaf 0] with A1 = [leaf 3, leaf 4] nearly as large
+// as A; B = [leaf 1, leaf 2], small. Opening the largest child first opens A,
+// then A1, and keeps B as the root's interior child; the two-level rule opens
+// A and B and keeps A1.
+TEST(BvhWide, LargestFirstOpensTheLargestChildren) {
+    Bvh b;
+    b.nodes.resize(4);
+    set_slot(b.nodes[0], 0, {0, 0}, {10, 10}, 1, 0);  // A
+    set_slot(b.nodes[0], 1, {20, 0}, {21, 1}, 2, 0);  // B
+    set_slot(b.nodes[1], 0, {0, 0}, {9, 9}, 3, 0);    // A1
+    set_slot(b.nodes[1], 1, {9.5f, 9.5f}, {10, 10}, ~0, 1);
+    set_slot(b.nodes[2], 0, {20, 0}, {20.5f, 0.5f}, ~1, 1);
+    set_slot(b.nodes[2], 1, {20.5f, 0.5f}, {21, 1}, ~2, 1);
+    set_slot(b.nodes[3], 0, {0, 0}, {1, 1}, ~3, 1);
+    set_slot(b.nodes[3], 1, {8, 8}, {9, 9}, ~4, 1);
+    // Leaf i's triangle spans its leaf's box: corner, corner + (s, 0), corner + (s, s).
+    const glm::vec2 corner[5] = {{9.5f, 9.5f}, {20, 0}, {20.5f, 0.5f}, {0, 0}, {8, 8}};
+    const float size[5] = {0.5f, 0.5f, 0.5f, 1, 1};
+    for (int i = 0; i < 5; ++i) {
+        TriVerts t{};
+        t.v0[0] = corner[i].x, t.v0[1] = corner[i].y;
+        t.v1[0] = corner[i].x + size[i], t.v1[1] = corner[i].y;
+        t.v2[0] = corner[i].x + size[i], t.v2[1] = corner[i].y + size[i];
+        t.prim = std::uint32_t(i);
+        b.triangles.push_back(t);
+    }
+    b.stats.max_depth = 3;
+    // lo_x + hi_x of the root's one interior child.
+    auto interior_x = [](const Bvh4Node& root) {
+        int interior = -1;
+        for (int k = 0; k < 4; ++k)
+            if (root.child[k] > 0) {
+                EXPECT_EQ(interior, -1) << "one interior child";
+                interior = k;
+            }
+        return interior < 0 ? -1.0f : root.lo_x[interior] + root.hi_x[interior];
+    };
+    const std::vector<Bvh4Node> largest = widen_bvh(b.nodes);
+    ASSERT_NO_THROW(check_wide(largest, b));
+    EXPECT_EQ(interior_x(largest[0]), 41.0f) << "B (x in [20, 21]) kept, A1 opened";
+    const std::vector<Bvh4Node> two = widen_bvh(b.nodes, WideningRule::TwoLevels);
+    ASSERT_NO_THROW(check_wide(two, b));
+    EXPECT_EQ(interior_x(two[0]), 9.0f) << "control: A1 (x in [0, 9]) kept, B opened";
 }
 
 TEST(BvhWide, ControlBrokenTreesAreRejected) {
