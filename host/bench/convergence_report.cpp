@@ -72,8 +72,9 @@ std::string convergence_markdown(const std::vector<ConvergenceSeries>& series, c
                " |";
         for (double l : levels) {
             const TimeToReach t = time_to_reach(s.points, l);
-            out += " " + (!t.reached ? std::string("not reached") : (t.at_first_point ? "≤ " : "") + seconds_text(t.seconds)) +
-                   " |";
+            out += " ";
+            out += !t.reached ? std::string("not reached") : std::string(t.at_first_point ? "≤ " : "") + seconds_text(t.seconds);
+            out += " |";
         }
         out += base > 0 ? format(" %.3g |\n", efficiency(s) / base) : std::string(" - |\n");
     }

@@ -25,7 +25,7 @@ void check_report_path(const std::string& path, const std::string& what) {
 
 void write_report_file(const std::string& path, const std::string& text) {
     const fs::path p(path);
-    const fs::path tmp = p.parent_path() / ("." + p.filename().string() + ".tmp" + std::to_string(::getpid()));
+    const fs::path tmp = p.parent_path() / (std::string(".") + p.filename().string() + ".tmp" + std::to_string(::getpid()));
     {
         std::ofstream out(tmp, std::ios::binary);
         if (!out) throw Error("cannot write " + tmp.string() + ": " + std::strerror(errno));

@@ -27,7 +27,7 @@ std::string extension(const std::string& path) {
 
 fs::path temp_beside(const fs::path& p) {
     // Same folder (so rename is atomic) and same extension (OpenImageIO picks the format from it).
-    return p.parent_path() / ("." + p.stem().string() + ".tmp" + std::to_string(::getpid()) + p.extension().string());
+    return p.parent_path() / (std::string(".") + p.stem().string() + ".tmp" + std::to_string(::getpid()) + p.extension().string());
 }
 
 #ifdef CLPATH_WITH_OIIO

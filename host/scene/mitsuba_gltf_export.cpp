@@ -15,7 +15,7 @@ std::string num(double v) {
     std::snprintf(buf, sizeof buf, "%.9g", v);
     return buf;
 }
-std::string vec(glm::vec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
+std::string vec(glm::vec3 v) { return std::string("[") + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
 
 const char* wrap_name(std::uint32_t w) {
     switch (w) {

@@ -20,7 +20,7 @@ std::string num(float v) {
     return buf;
 }
 std::string vec(glm::vec3 v, const char* sep = " ") { return num(v.x) + sep + num(v.y) + sep + num(v.z); }
-std::string json_vec(glm::vec3 v) { return "[" + vec(v, ", ") + "]"; }
+std::string json_vec(glm::vec3 v) { return std::string("[") + vec(v, ", ") + "]"; }
 
 
 const char* kind_name(std::uint32_t kind) {
