@@ -5,7 +5,10 @@
 #ifndef CLP_RNG_CL
 #define CLP_RNG_CL
 
-#include "common.h"
+/* Plain C over shared_structs.h's types: the host's CPU path tracer
+ * (host/bench/cpu_estimator.hpp) includes this file too, so the streams have
+ * one definition. */
+#include "shared_structs.h"
 
 /* "lowbias32" from C. Wellons' hash prospector (2018): a bijective 32-bit mixer
  * with very low avalanche bias; bijective, so distinct inputs never collide. */

@@ -1,7 +1,7 @@
 #pragma once
 // clpath's path-tracing estimator for Lambertian surfaces, written again in
 // C++ for a CPU tracer (bench/embree_path_tracer.cpp): the random streams
-// (kernels/rng.cl), the camera (camera.cl), the diffuse BSDF and its frame
+// (kernels/rng.cl itself, included below), the camera (camera.cl), the diffuse BSDF and its frame
 // (materials.cl), the light table's sampling and pdfs (lights.cl), and the
 // hit-point error bound and ray offset (intersect.cl). Each function follows
 // the kernel function of the same name, so that the CPU tracer draws its
@@ -24,32 +24,8 @@ inline float gamma_bound(int n) { return (float(n) * 0x1.0p-24f) / (1.0f - float
 inline float max3(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 inline glm::vec3 vec3_of(const float* p) { return {p[0], p[1], p[2]}; }
 
-// ---- random numbers (rng.cl) ----
-inline std::uint32_t hash_u32(std::uint32_t x) {
-    x ^= x >> 16;
-    x *= 0x7feb352du;
-    x ^= x >> 15;
-    x *= 0x846ca68bu;
-    x ^= x >> 16;
-    return x;
-}
-
-struct Rng {
-    std::uint32_t state;
-    float next() {
-        std::uint32_t x = state;
-        x ^= x << 13;
-        x ^= x >> 17;
-        x ^= x << 5;
-        state = x;
-        return float(x >> 8) * 0x1.0p-24f;
-    }
-};
-
-inline Rng rng_seed(std::uint32_t pixel, std::uint32_t sample, std::uint32_t seed) {
-    const std::uint32_t h = hash_u32(hash_u32(hash_u32(seed ^ 0x6a09e667u) ^ pixel) ^ sample);
-    return Rng{h ? h : 0x9e3779b9u};
-}
+// ---- random numbers: the kernels' own file (hash_u32, Rng, rng_seed, rng_next) ----
+#include "rng.cl"
 
 // ---- camera (camera.cl) ----
 struct Ray {

@@ -132,7 +132,7 @@ public:
                         double s[3] = {0, 0, 0}, s2[3] = {0, 0, 0};
                         for (std::uint32_t k = 0; k < spp; ++k) {
                             cpu::Rng rng = cpu::rng_seed(pixel, k, seed);
-                            const float jx = rng.next(), jy = rng.next();
+                            const float jx = cpu::rng_next(&rng), jy = cpu::rng_next(&rng);
                             vec3 L = integrate(cpu::camera_ray(camera_, px, py, jx, jy), rng, my_rays);
                             if (!std::isfinite(L.x) || !std::isfinite(L.y) || !std::isfinite(L.z)) {
                                 ++my_nonfinite;
@@ -261,7 +261,7 @@ private:
     // heuristic (kernels/integrator.cl sample_direct).
     vec3 sample_direct(const Surface& s, vec3 wo, cpu::Rng& rng, std::uint64_t& rays) const {
         cpu::LightSample ls;
-        const float u0 = rng.next(), u1 = rng.next(), u2 = rng.next();
+        const float u0 = cpu::rng_next(&rng), u1 = cpu::rng_next(&rng), u2 = cpu::rng_next(&rng);
         if (!cpu::sample_light(prepared_->lights.data(), prepared_->light_alias.data(),
                                std::uint32_t(prepared_->lights.size()), s.p, u0, u1, u2, ls))
             return vec3(0.0f);
@@ -300,8 +300,8 @@ private:
             if (depth >= max_depth_ || !scatters) break;
             const vec3 wo = -ray.d;
             if (!prepared_->lights.empty()) L += beta * sample_direct(s, wo, rng, rays);
-            const float u1 = rng.next(), u2 = rng.next();
-            rng.next();  // the kernels draw a third number for every BSDF (diffuse ignores it)
+            const float u1 = cpu::rng_next(&rng), u2 = cpu::rng_next(&rng);
+            cpu::rng_next(&rng);  // the kernels draw a third number for every BSDF (diffuse ignores it)
             float pdf;
             const vec3 wi = cpu::diffuse_sample(s.ng, s.ns, wo, u1, u2, pdf);
             // A reflection that points below the geometric surface ends the path.
