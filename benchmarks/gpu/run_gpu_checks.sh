@@ -2,7 +2,8 @@
 # One batch on a machine with an NVIDIA GPU, from a build folder copied there
 # (the script builds nothing): registers the NVIDIA OpenCL driver, lists
 # devices, runs every test program on the GPU, renders the default scene on
-# the GPU and on the machine's CPU through PoCL, and times a longer GPU render.
+# the GPU and on the machine's CPU through PoCL, times a longer GPU render,
+# path tracing against Embree (bench path) and the scaling and ray benchmarks.
 # Logs and images go to $OUT.
 # Usage: benchmarks/gpu/run_gpu_checks.sh BUILD_DIR
 #   (a -DCLPATH_WITH_OIIO=OFF -DCLPATH_WITH_VIEWER=OFF -DCLPATH_WITH_EMBREE=OFF build: bench rays then
@@ -42,6 +43,15 @@ echo "== renders" | tee "$OUT/summary.txt"
 # Speed: steady state on the GPU.
 "$B/clpath" render --device nvidia --spp 4096 --seed 3 -q -o "$OUT/cornell-gpu-4096.pfm" 2>&1 | tee -a "$OUT/summary.txt"
 "$B/clpath" render --device nvidia --spp 1024 --seed 4 --rr depth --max-depth 10 -q -o /tmp/thesis-rule.pfm 2>&1 | tee -a "$OUT/summary.txt"
+
+# Path tracing on the GPU against the Embree path tracer on the machine's CPU
+# cores (same estimator; the two images are checked to agree). Needs a build
+# with Embree; a build without it says so and the batch goes on.
+echo "== bench path: GPU against Embree on the CPU" | tee "$OUT/bench-path.txt"
+for s in scenes/cornell-point.json scenes/cornell-classic.json scenes/bunny.json; do
+  timeout 600 "$B/clpath" bench path "$s" --device nvidia --width 512 --height 512 --spp 64 --max-depth 4 \
+    --rounds 3 2>&1 | tail -n 12 | tee -a "$OUT/bench-path.txt"
+done
 
 # The full scaling and ray-batch benchmarks on the GPU, results under
 # $OUT/results/<device-dir>/{scaling,rays}: copy them into
