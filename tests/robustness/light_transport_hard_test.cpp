@@ -103,7 +103,8 @@ Scene sky_with(const std::vector<std::pair<std::vector<glm::vec3>, SceneMaterial
     Scene s;
     s.name = "sky";
     int i = 0;
-    for (const auto& [tris, m] : parts) s.add_triangles(tris, s.add_material("m" + std::to_string(i++), m));
+    for (const auto& [tris, m] : parts)
+        s.add_triangles(tris, s.add_material(std::string("m").append(std::to_string(i++)), m));
     s.environment.color = glm::vec3(0.8f, 0.5f, 0.3f);
     s.camera.eye = eye;
     s.camera.target = {0, 0, 0};

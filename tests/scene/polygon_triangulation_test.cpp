@@ -139,7 +139,7 @@ TEST(ObjPolygons, FacesOfMoreThan255CornersStayWhole) {
         obj += "v " + std::to_string(std::cos(a)) + " " + std::to_string(std::sin(a)) + " 0\n";
     }
     obj += "v 5 0 0\nv 6 0 0\nv 5 1 0\nf";
-    for (int i = 1; i <= n; ++i) obj += " " + std::to_string(i);
+    for (int i = 1; i <= n; ++i) (obj += " ") += std::to_string(i);
     obj += "\nf 301 302 303\n";
     test::MemoryFiles files;
     const ObjMesh m = parse_obj(obj, "m/disc.obj", files.options().read_file);
