@@ -179,10 +179,29 @@ inline float intersect_box(const RayPre* r, float3 lo, float3 hi, float tmax) {
     return tnear <= tfar ? tnear : INFINITY;
 }
 
+/* Min and max by compare and select rather than fmin/fmax: the builtins'
+ * NaN rules cost a compare and a blend each on x86 (LLVM's minnum). Each
+ * returns its second operand when the first is NaN. */
+#define CLP_MIN4(a, b) select((b), (a), (a) < (b))
+#define CLP_MAX4(a, b) select((b), (a), (a) > (b))
+
+/* The entry distance of four boxes from each axis's near and far slab
+ * distances, or +INFINITY for a miss: the exit distance is widened by the
+ * rounding of the subtraction, the product and the reciprocal (Ize 2013, as
+ * intersect_box). An axis whose near and far are NaN (a flat box with the
+ * origin in it, see intersect_box4) stands first against a partial result
+ * that is never NaN (the chains start from 0 and tmax), so it bounds nothing,
+ * as with fmin/fmax. */
+inline float4 slab_entry4(float4 nx, float4 ny, float4 nz, float4 fx, float4 fy, float4 fz, float tmax) {
+    float4 tnear = CLP_MAX4(nx, CLP_MAX4(ny, CLP_MAX4(nz, (float4)(0.0f))));
+    float4 tfar = CLP_MIN4(fx, CLP_MIN4(fy, CLP_MIN4(fz, (float4)(tmax)))) * (1.0f + 2.0f * CLP_GAMMA(5));
+    return select((float4)(INFINITY), tnear, tnear <= tfar);
+}
+
 /* intersect_box for the four child boxes of a Bvh4Node at once, stored by
  * coordinate: lane by lane the same slab distances, the same NaN repair and
  * the same conservative widening, so the same boxes are entered at the same
- * distances (min and max are taken by compare and select, see below). */
+ * distances. */
 inline float4 intersect_box4(const RayPre* r, float4 lo_x, float4 hi_x, float4 lo_y, float4 hi_y, float4 lo_z,
                              float4 hi_z, float tmax) {
     float4 t0x = (lo_x - r->org.x) * r->inv_dir.x, t1x = (hi_x - r->org.x) * r->inv_dir.x;
@@ -199,22 +218,10 @@ inline float4 intersect_box4(const RayPre* r, float4 lo_x, float4 hi_x, float4 l
         t0z = select(t0z, -t1z, isnan(t0z));
         t1z = select(t1z, -t0z, isnan(t1z));
     }
-    /* Comparisons and selects rather than fmin/fmax: the builtins' NaN rules
-     * cost a compare and a blend each on x86 (LLVM's minnum). A NaN left
-     * after the repair (flat box, origin in it) is in both t0 and t1 of its
-     * axis, so its near and far are NaN; CLP_MAX4/CLP_MIN4 return their
-     * second operand when the first is NaN, and the chains below put each
-     * axis first against a partial result that is never NaN (it starts from
-     * 0 and tmax), so that axis bounds nothing, as with fmin/fmax. */
-#define CLP_MIN4(a, b) select((b), (a), (a) < (b))
-#define CLP_MAX4(a, b) select((b), (a), (a) > (b))
-    float4 nx = CLP_MIN4(t0x, t1x), ny = CLP_MIN4(t0y, t1y), nz = CLP_MIN4(t0z, t1z);
-    float4 fx = CLP_MAX4(t0x, t1x), fy = CLP_MAX4(t0y, t1y), fz = CLP_MAX4(t0z, t1z);
-    float4 tnear = CLP_MAX4(nx, CLP_MAX4(ny, CLP_MAX4(nz, (float4)(0.0f))));
-    float4 tfar = CLP_MIN4(fx, CLP_MIN4(fy, CLP_MIN4(fz, (float4)(tmax)))) * (1.0f + 2.0f * CLP_GAMMA(5));
-#undef CLP_MIN4
-#undef CLP_MAX4
-    return select((float4)(INFINITY), tnear, tnear <= tfar);
+    /* A NaN left after the repair (flat box, origin in it) is in both t0 and
+     * t1 of its axis, so its near and far are NaN. */
+    return slab_entry4(CLP_MIN4(t0x, t1x), CLP_MIN4(t0y, t1y), CLP_MIN4(t0z, t1z), CLP_MAX4(t0x, t1x),
+                       CLP_MAX4(t0y, t1y), CLP_MAX4(t0z, t1z), tmax);
 }
 
 /* intersect_box4 for a ray whose 1/dir is finite, given each axis's planes
@@ -225,17 +232,13 @@ inline float4 intersect_box4(const RayPre* r, float4 lo_x, float4 hi_x, float4 l
  * twelve compares and selects fewer. */
 inline float4 intersect_box4_ordered(const RayPre* r, float4 near_x, float4 far_x, float4 near_y, float4 far_y,
                                      float4 near_z, float4 far_z, float tmax) {
-    float4 nx = (near_x - r->org.x) * r->inv_dir.x, fx = (far_x - r->org.x) * r->inv_dir.x;
-    float4 ny = (near_y - r->org.y) * r->inv_dir.y, fy = (far_y - r->org.y) * r->inv_dir.y;
-    float4 nz = (near_z - r->org.z) * r->inv_dir.z, fz = (far_z - r->org.z) * r->inv_dir.z;
-#define CLP_MIN4(a, b) select((b), (a), (a) < (b))
-#define CLP_MAX4(a, b) select((b), (a), (a) > (b))
-    float4 tnear = CLP_MAX4(nx, CLP_MAX4(ny, CLP_MAX4(nz, (float4)(0.0f))));
-    float4 tfar = CLP_MIN4(fx, CLP_MIN4(fy, CLP_MIN4(fz, (float4)(tmax)))) * (1.0f + 2.0f * CLP_GAMMA(5));
+    return slab_entry4((near_x - r->org.x) * r->inv_dir.x, (near_y - r->org.y) * r->inv_dir.y,
+                       (near_z - r->org.z) * r->inv_dir.z, (far_x - r->org.x) * r->inv_dir.x,
+                       (far_y - r->org.y) * r->inv_dir.y, (far_z - r->org.z) * r->inv_dir.z, tmax);
+}
+
 #undef CLP_MIN4
 #undef CLP_MAX4
-    return select((float4)(INFINITY), tnear, tnear <= tfar);
-}
 
 /* Hit point from barycentrics, with a bound on its distance from the exact
  * point v0 + b1 (v1 - v0) + b2 (v2 - v0), which lies in the triangle's plane

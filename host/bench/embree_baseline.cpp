@@ -34,31 +34,8 @@ namespace {
 // single rays, which Embree may reorder into packets internally).
 constexpr std::size_t kBlock = 256;
 
-// Embree has no guard against the surface a ray leaves, and a secondary ray
-// here can start exactly on it (kernels/intersect.cl hit_point): Embree then
-// reports that surface at t = 0 and an any-hit query ends there. Renderers
-// built on Embree start such rays a little way along instead; here, as
-// Mitsuba 3 does, (1 + max |o_i|) 1e-6 (16 ulps of the larger of 1 and the
-// origin's magnitude), so Embree traces the rays clpath traces.
-float self_tnear(const BatchRay& b) {
-    const float mag = std::max({std::fabs(b.o[0]), std::fabs(b.o[1]), std::fabs(b.o[2])});
-    const float len = std::sqrt(b.d[0] * b.d[0] + b.d[1] * b.d[1] + b.d[2] * b.d[2]);
-    return len > 0 ? (1.0f + mag) * 1e-6f / len : 0.0f;
-}
-
 void init_ray(RTCRay& r, const BatchRay& b) {
-    r.org_x = b.o[0];
-    r.org_y = b.o[1];
-    r.org_z = b.o[2];
-    r.tnear = self_tnear(b);
-    r.dir_x = b.d[0];
-    r.dir_y = b.d[1];
-    r.dir_z = b.d[2];
-    r.time = 0.0f;
-    r.tfar = b.tmax;
-    r.mask = ~0u;
-    r.id = 0;
-    r.flags = 0;
+    init_embree_ray(r, {b.o[0], b.o[1], b.o[2]}, {b.d[0], b.d[1], b.d[2]}, b.tmax);
 }
 
 class Baseline final : public EmbreeBaseline {

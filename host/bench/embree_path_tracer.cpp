@@ -74,17 +74,6 @@ namespace {
 using cpu::max3;
 using glm::vec3;
 
-// Embree has no guard against the surface a ray leaves: a ray whose origin
-// lies exactly on it (the kernels' offset_ray_origin moves an origin on an
-// axis-aligned face by no more than one ulp) would see that surface at t = 0.
-// Rays start (1 + max |o_i|) 1e-6 along instead, as in Mitsuba 3 and the ray
-// batches' Embree baseline (bench/embree_baseline.cpp).
-float self_tnear(vec3 o, vec3 d) {
-    const float mag = std::max({std::fabs(o.x), std::fabs(o.y), std::fabs(o.z)});
-    const float len = glm::length(d);
-    return len > 0 ? (1.0f + mag) * 1e-6f / len : 0.0f;
-}
-
 constexpr int kTile = 16;  // pixels per side of the tiles the threads take in turn
 
 class Tracer final : public EmbreePathTracer {
@@ -185,18 +174,7 @@ private:
     Hit closest(const cpu::Ray& r, std::uint64_t& rays) const {
         ++rays;
         RTCRayHit rh;
-        rh.ray.org_x = r.o.x;
-        rh.ray.org_y = r.o.y;
-        rh.ray.org_z = r.o.z;
-        rh.ray.dir_x = r.d.x;
-        rh.ray.dir_y = r.d.y;
-        rh.ray.dir_z = r.d.z;
-        rh.ray.tnear = self_tnear(r.o, r.d);
-        rh.ray.tfar = INFINITY;
-        rh.ray.time = 0;
-        rh.ray.mask = ~0u;
-        rh.ray.id = 0;
-        rh.ray.flags = 0;
+        init_embree_ray(rh.ray, r.o, r.d, INFINITY);
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         RTCIntersectContext ctx;
@@ -216,18 +194,7 @@ private:
     bool occluded(vec3 o, vec3 d, float tmax, std::uint64_t& rays) const {
         ++rays;
         RTCRay r;
-        r.org_x = o.x;
-        r.org_y = o.y;
-        r.org_z = o.z;
-        r.dir_x = d.x;
-        r.dir_y = d.y;
-        r.dir_z = d.z;
-        r.tnear = self_tnear(o, d);
-        r.tfar = tmax;
-        r.time = 0;
-        r.mask = ~0u;
-        r.id = 0;
-        r.flags = 0;
+        init_embree_ray(r, o, d, tmax);
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         rtcOccluded1(embree_->scene(), &ctx, &r);

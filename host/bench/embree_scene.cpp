@@ -3,6 +3,7 @@
 #if CLPATH_WITH_EMBREE
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <string>
 #include <thread>
 
@@ -50,6 +51,23 @@ EmbreeScene::~EmbreeScene() {
 void EmbreeScene::check(const char* what) const {
     const RTCError e = rtcGetDeviceError(device_);
     if (e != RTC_ERROR_NONE) throw Error(std::string("Embree: ") + what + " failed (error " + std::to_string(int(e)) + ")");
+}
+
+void init_embree_ray(RTCRay& r, glm::vec3 o, glm::vec3 d, float tmax) {
+    const float mag = std::max({std::fabs(o.x), std::fabs(o.y), std::fabs(o.z)});
+    const float len = glm::length(d);
+    r.org_x = o.x;
+    r.org_y = o.y;
+    r.org_z = o.z;
+    r.tnear = len > 0 ? (1.0f + mag) * 1e-6f / len : 0.0f;
+    r.dir_x = d.x;
+    r.dir_y = d.y;
+    r.dir_z = d.z;
+    r.time = 0.0f;
+    r.tfar = tmax;
+    r.mask = ~0u;
+    r.id = 0;
+    r.flags = 0;
 }
 
 }  // namespace clpath

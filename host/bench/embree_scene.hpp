@@ -34,5 +34,14 @@ private:
     double build_ms_ = 0;
 };
 
+// A ray from o along d (need not be unit) over (tnear, tmax]. Embree has no
+// guard against the surface a ray leaves, and clpath's secondary rays can
+// start exactly on it (kernels/intersect.cl hit_point, offset_ray_origin):
+// Embree would report that surface at t = 0. Renderers built on Embree start
+// such rays a little way along instead; here, as Mitsuba 3 does, at
+// (1 + max |o_i|) 1e-6 (16 ulps of the larger of 1 and the origin's
+// magnitude), so Embree traces the rays clpath traces.
+void init_embree_ray(RTCRay& r, glm::vec3 o, glm::vec3 d, float tmax);
+
 }  // namespace clpath
 #endif
