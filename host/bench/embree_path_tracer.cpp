@@ -64,6 +64,10 @@ std::vector<std::string> embree_path_unsupported(const Scene& scene) {
 bool embree_path_built_in() { return false; }
 
 std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene&, std::uint32_t, int) { return nullptr; }
+std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene&, std::shared_ptr<const PreparedScene>,
+                                                          std::uint32_t, int) {
+    return nullptr;
+}
 
 #else
 
@@ -78,7 +82,8 @@ constexpr int kTile = 16;  // pixels per side of the tiles the threads take in t
 
 class Tracer final : public EmbreePathTracer {
 public:
-    Tracer(const Scene& scene, std::uint32_t max_depth, int threads) : max_depth_(max_depth) {
+    Tracer(const Scene& scene, std::shared_ptr<const PreparedScene> prepared, std::uint32_t max_depth, int threads)
+        : max_depth_(max_depth), prepared_(std::move(prepared)) {
         const auto why = embree_path_unsupported(scene);
         if (!why.empty()) {
             std::string all;
@@ -88,9 +93,6 @@ public:
         // The light table, materials and normals exactly as the renderer
         // uploads them (render/prepared_scene.hpp); of its BVH only the
         // triangles' light indices are read (for MIS at emitters).
-        RenderSettings path;
-        path.integrator = CLP_INTEGRATOR_PATH;
-        prepared_ = prepare_scene(scene, path);
         light_of_.assign(scene.triangle_count(), CLP_NO_LIGHT);
         for (const auto& t : prepared_->accel.triangles) light_of_[t.prim] = t.light;
         camera_ = camera_data(scene.camera);
@@ -294,8 +296,15 @@ private:
 
 }  // namespace
 
+std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene& scene,
+                                                          std::shared_ptr<const PreparedScene> prepared,
+                                                          std::uint32_t max_depth, int threads) {
+    return std::make_unique<Tracer>(scene, std::move(prepared), max_depth, threads);
+}
+
 std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene& scene, std::uint32_t max_depth, int threads) {
-    return std::make_unique<Tracer>(scene, max_depth, threads);
+    // The renderer's settings but for what prepare_scene reads (the BVH's), which stay the defaults.
+    return make_embree_path_tracer(scene, prepare_scene(scene, RenderSettings{}), max_depth, threads);
 }
 
 #endif

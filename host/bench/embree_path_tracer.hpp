@@ -15,6 +15,8 @@
 
 namespace clpath {
 
+struct PreparedScene;
+
 // Per-pixel sums of one render, row 0 at the top: the mean, and for the
 // agreement check the per-pixel sample variance.
 struct PathSums {
@@ -53,6 +55,12 @@ bool embree_path_built_in();
 // Embree; throws clpath::Error for an unsupported scene (the reasons of
 // embree_path_unsupported) or when Embree reports an error.
 std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene& scene, std::uint32_t max_depth, int threads = 0);
+// The same, reading the light table, materials and normals from `prepared`,
+// the scene as prepare_scene made it for the renderer it is timed against
+// (so neither the BVH nor the light table is built twice).
+std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene& scene,
+                                                          std::shared_ptr<const PreparedScene> prepared,
+                                                          std::uint32_t max_depth, int threads = 0);
 
 // "Intel(R) Xeon(R) Processor" from /proc/cpuinfo, or "an unknown CPU".
 std::string cpu_model_name();

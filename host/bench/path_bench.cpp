@@ -71,9 +71,10 @@ PathBenchResult run_path_bench(Context& ctx, const Scene& scene, const PathBench
     settings.hemisphere = kHemisphereCosine;
     settings.seed = o.seed;
     if (log) log("compiling and uploading for " + r.clpath_device);
-    Renderer renderer(ctx, scene, settings);
+    const std::shared_ptr<const PreparedScene> prepared = prepare_scene(scene, settings);
+    Renderer renderer(ctx, *prepared, settings);
     renderer.add_samples(1);  // warm-up: a device may finish compiling at the first launch
-    auto tracer = make_embree_path_tracer(scene, o.max_depth, o.threads);
+    auto tracer = make_embree_path_tracer(scene, prepared, o.max_depth, o.threads);
     r.embree = tracer->describe();
     tracer->render(1, o.seed + 1);  // warm-up, as the device's
 
