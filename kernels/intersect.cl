@@ -27,13 +27,14 @@ typedef struct {
     int near_x, near_y, near_z;
 } RayPre;
 
-inline float axis_of(float3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
-
+/* Per ray, once: every division is one vector division, and the axes are
+ * picked by indexing a private copy of d rather than by chains of compares
+ * and selects (the same correctly rounded quotients as one by one). */
 inline RayPre ray_prepare(float3 o, float3 d) {
     RayPre r;
     r.org = o;
     r.dir = d;
-    r.inv_dir = (float3)(1.0f / d.x, 1.0f / d.y, 1.0f / d.z);
+    r.inv_dir = (float3)(1.0f) / d;
     r.inv_dir_finite = !any(isinf(r.inv_dir));
     r.near_x = r.inv_dir.x < 0.0f ? 1 : 0;
     r.near_y = r.inv_dir.y < 0.0f ? 3 : 2;
@@ -44,7 +45,9 @@ inline RayPre ray_prepare(float3 o, float3 d) {
     int kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
     int kx = kz == 2 ? 0 : kz + 1;
     int ky = kx == 2 ? 0 : kx + 1;
-    float dz = axis_of(d, kz);
+    float da[3];
+    vstore3(d, 0, da);
+    float dz = da[kz];
     if (dz < 0.0f) {
         int t = kx;
         kx = ky;
@@ -53,9 +56,10 @@ inline RayPre ray_prepare(float3 o, float3 d) {
     r.kx = kx;
     r.ky = ky;
     r.kz = kz;
-    r.sx = axis_of(d, kx) / dz;
-    r.sy = axis_of(d, ky) / dz;
-    r.sz = 1.0f / dz;
+    float3 s = (float3)(da[kx], da[ky], 1.0f) / dz;
+    r.sx = s.x;
+    r.sy = s.y;
+    r.sz = s.z;
     return r;
 }
 
@@ -141,13 +145,18 @@ __attribute__((always_inline)) inline int intersect_triangle(const RayPre* r, fl
      * intersect_test, TinyGrazingTrianglesFarAwayAreHit). A hit within the
      * bound is therefore kept when the origin's distance to the plane, whose
      * bound is tight, shows it clearly in front. */
-    float max_z = fmax(fabs(Az), fmax(fabs(Bz), fabs(Cz)));
-    float max_x = fmax(fabs(Ax), fmax(fabs(Bx), fabs(Cx)));
-    float max_y = fmax(fabs(Ay), fmax(fabs(By), fabs(Cy)));
+    /* None of these is NaN (finite vertices, a finite nonzero det), so a
+     * compare and select gives fmax's result without the NaN rule, which
+     * costs a compare and a blend more per call on x86. */
+#define CLP_MAXF(a, b) ((a) > (b) ? (a) : (b))
+    float max_z = CLP_MAXF(fabs(Az), CLP_MAXF(fabs(Bz), fabs(Cz)));
+    float max_x = CLP_MAXF(fabs(Ax), CLP_MAXF(fabs(Bx), fabs(Cx)));
+    float max_y = CLP_MAXF(fabs(Ay), CLP_MAXF(fabs(By), fabs(Cy)));
     float delta_z = CLP_GAMMA(5) * max_z;
     float delta_x = CLP_GAMMA(7) * (max_x + max_z), delta_y = CLP_GAMMA(7) * (max_y + max_z);
     float delta_e = 2.0f * (CLP_GAMMA(4) * max_x * max_y + delta_y * max_x + delta_x * max_y);
-    float max_e = fmax(fabs(U), fmax(fabs(V), fabs(W)));
+    float max_e = CLP_MAXF(fabs(U), CLP_MAXF(fabs(V), fabs(W)));
+#undef CLP_MAXF
     float delta_t = 3.0f * (CLP_GAMMA(5) * max_e * max_z + delta_e * max_z + delta_z * max_e) * inv;
     if (t <= delta_t && !origin_clearly_in_front(r, v0, v1, v2)) return 0;
     *t_out = t;
@@ -224,17 +233,41 @@ inline float4 intersect_box4(const RayPre* r, float4 lo_x, float4 hi_x, float4 l
                        CLP_MAX4(t0y, t1y), CLP_MAX4(t0z, t1z), tmax);
 }
 
-/* intersect_box4 for a ray whose 1/dir is finite, given each axis's planes
- * in the order the ray crosses them (RayPre.near_x...). For such a ray the
- * slab distances are finite, and (near - o) / d <= (far - o) / d also after
- * rounding (rounding is monotonic), so the per-axis min and max of
+/* What the 4-box test reads of the ray at every node, copied out of RayPre
+ * once per traversal (ray_box4): read through the RayPre pointer, it was
+ * loaded again at every node, as the compiler cannot tell that the
+ * traversal's stores to its stack leave it alone. Origin and 1/dir are
+ * broadcast; near_x... are RayPre's plane rows. */
+typedef struct {
+    float4 ox, oy, oz;
+    float4 ix, iy, iz;
+    int near_x, near_y, near_z;
+} RayBox4;
+
+inline RayBox4 ray_box4(const RayPre* r) {
+    RayBox4 b;
+    b.ox = (float4)(r->org.x);
+    b.oy = (float4)(r->org.y);
+    b.oz = (float4)(r->org.z);
+    b.ix = (float4)(r->inv_dir.x);
+    b.iy = (float4)(r->inv_dir.y);
+    b.iz = (float4)(r->inv_dir.z);
+    b.near_x = r->near_x;
+    b.near_y = r->near_y;
+    b.near_z = r->near_z;
+    return b;
+}
+
+/* intersect_box4 for a ray whose 1/dir is finite, over the node rows n (a
+ * Bvh4Node), each axis's planes read in the order the ray crosses them. For
+ * such a ray the slab distances are finite, and (near - o) / d <= (far - o) / d
+ * also after rounding (rounding is monotonic), so the per-axis min and max of
  * intersect_box4 are known in advance: the same distances, bit for bit, with
  * twelve compares and selects fewer. */
-inline float4 intersect_box4_ordered(const RayPre* r, float4 near_x, float4 far_x, float4 near_y, float4 far_y,
-                                     float4 near_z, float4 far_z, float tmax) {
-    return slab_entry4((near_x - r->org.x) * r->inv_dir.x, (near_y - r->org.y) * r->inv_dir.y,
-                       (near_z - r->org.z) * r->inv_dir.z, (far_x - r->org.x) * r->inv_dir.x,
-                       (far_y - r->org.y) * r->inv_dir.y, (far_z - r->org.z) * r->inv_dir.z, tmax);
+inline float4 intersect_box4_ordered(const RayBox4* b, global const float4* n, float tmax) {
+    return slab_entry4((n[b->near_x] - b->ox) * b->ix, (n[b->near_y] - b->oy) * b->iy,
+                       (n[b->near_z] - b->oz) * b->iz, (n[b->near_x ^ 1] - b->ox) * b->ix,
+                       (n[b->near_y ^ 1] - b->oy) * b->iy, (n[b->near_z ^ 1] - b->oz) * b->iz, tmax);
 }
 
 #undef CLP_MIN4

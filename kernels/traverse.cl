@@ -57,15 +57,21 @@ typedef Bvh4Node AccelNode;
         count = count.sw;                                                       \
     }
 
-/* A child slot, leaves pass: intersected at once when entered before the
- * closest hit so far. */
+/* Closest hit, after the sort: the children entered before the closest hit
+ * so far are a prefix of the slots, so each test of a slot is nested in its
+ * nearer neighbour's and the first slot entered beyond the hit ends the
+ * tests. A leaf is intersected at once; an interior child is pushed. */
+#define CLP_SORTED_LEAF(k)                                                      \
+    if (child.s##k < 0) intersect_leaf(r, tris, (uint)~child.s##k, count.s##k, &hit CLP_ALPHA_ARG);
+#define CLP_SORTED_PUSH(k)                                                      \
+    if (child.s##k > 0) stack[sp++] = child.s##k;
+
+/* Any hit, unsorted: every slot is tested, leaves first (one may end the
+ * walk), then the interior children entered before the hit are pushed. */
 #define CLP_VISIT_LEAF(k)                                                       \
     if (d.s##k < hit.t && child.s##k < 0) {                                     \
-        if (intersect_leaf(r, tris, (uint)~child.s##k, count.s##k, &hit CLP_ALPHA_ARG) && any_hit) return hit; \
+        if (intersect_leaf(r, tris, (uint)~child.s##k, count.s##k, &hit CLP_ALPHA_ARG)) return hit; \
     }
-
-/* A child slot, interior pass: still entered before the closest hit (a leaf
- * hit may have shortened it), so it is pushed. */
 #define CLP_PUSH_INTERIOR(k)                                                    \
     if (d.s##k < hit.t && child.s##k > 0) stack[sp++] = child.s##k;
 
@@ -74,10 +80,11 @@ typedef Bvh4Node AccelNode;
  * first hit found (shadow rays): the compiler folds it for constant arguments.
  *
  * Each step fetches one 128-byte Bvh4Node as eight float4 rows and tests its
- * four boxes in one vector slab test; the children are sorted by entry
- * distance (a five-exchange sorting network, Knuth TAOCP vol. 3, 5.3.4), the
- * leaves among them intersected nearest first, and the interior ones pushed
- * farthest first, so the nearest is the next popped. */
+ * four boxes in one vector slab test. For the closest hit the children are
+ * sorted by entry distance (a five-exchange sorting network, Knuth TAOCP
+ * vol. 3, 5.3.4), the leaves among them intersected nearest first, and the
+ * interior ones pushed farthest first, so the nearest is the next popped.
+ * Any hit will do for shadow rays, so they skip the sort. */
 inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
                          int any_hit, uint* visits CLP_ALPHA_PARAM) {
     Hit hit;
@@ -90,27 +97,44 @@ inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tr
     int stack[CLP_BVH4_STACK];
     int sp = 0;
     int node = 0;
+    const RayBox4 rb = ray_box4(r);
+    const int finite = r->inv_dir_finite;
     for (;;) {
         global const float4* n = (global const float4*)&nodes[node];
         if (visits) ++*visits;
-        float4 d;
-        if (r->inv_dir_finite)
-            d = intersect_box4_ordered(r, n[r->near_x], n[r->near_x ^ 1], n[r->near_y], n[r->near_y ^ 1],
-                                       n[r->near_z], n[r->near_z ^ 1], hit.t);
-        else
-            d = intersect_box4(r, n[0], n[1], n[2], n[3], n[4], n[5], hit.t);
+        float4 d = finite ? intersect_box4_ordered(&rb, n, hit.t)
+                          : intersect_box4(r, n[0], n[1], n[2], n[3], n[4], n[5], hit.t);
         int4 child = as_int4(n[6]);
         uint4 count = as_uint4(n[7]);
         d = select(d, (float4)(INFINITY), child == 0); /* empty slots */
-        if (any(d < hit.t)) {
-            /* Any hit will do for shadow rays: the order only matters to the closest. */
-            if (!any_hit) {
-                CLP_SORT2(0, 1, s1023)
-                CLP_SORT2(2, 3, s0132)
-                CLP_SORT2(0, 2, s2103)
-                CLP_SORT2(1, 3, s0321)
-                CLP_SORT2(1, 2, s0213)
+        if (!any_hit) {
+            CLP_SORT2(0, 1, s1023)
+            CLP_SORT2(2, 3, s0132)
+            CLP_SORT2(0, 2, s2103)
+            CLP_SORT2(1, 3, s0321)
+            CLP_SORT2(1, 2, s0213)
+            if (d.s0 < hit.t) {
+                CLP_SORTED_LEAF(0)
+                if (d.s1 < hit.t) {
+                    CLP_SORTED_LEAF(1)
+                    if (d.s2 < hit.t) {
+                        CLP_SORTED_LEAF(2)
+                        if (d.s3 < hit.t) CLP_SORTED_LEAF(3)
+                    }
+                }
+                /* Again, against the hit the leaves may have found. */
+                if (d.s0 < hit.t) {
+                    if (d.s1 < hit.t) {
+                        if (d.s2 < hit.t) {
+                            if (d.s3 < hit.t) CLP_SORTED_PUSH(3)
+                            CLP_SORTED_PUSH(2)
+                        }
+                        CLP_SORTED_PUSH(1)
+                    }
+                    CLP_SORTED_PUSH(0)
+                }
             }
+        } else if (any(d < hit.t)) {
             CLP_VISIT_LEAF(0)
             CLP_VISIT_LEAF(1)
             CLP_VISIT_LEAF(2)
