@@ -73,6 +73,8 @@ def main():
                     ratios.append(float(c_at[(scene, batch, k)]["mrays_per_s"]) / float(r["mrays_per_s"]))
                     best_per_round[k] = max(best_per_round[k], float(r["mrays_per_s"]))
                 s[f"clpath_over_{name}"] = median(ratios)
+                s[f"clpath_over_{name}_min"] = min(ratios, default=float("nan"))
+                s[f"clpath_over_{name}_max"] = max(ratios, default=float("nan"))
             s["clpath_over_best_tinybvh"] = median(
                 [float(c_at[(scene, batch, k)]["mrays_per_s"]) / v for k, v in best_per_round.items() if v > 0])
             s["load1_min"] = min(float(r["load1"]) for r in c)
@@ -114,7 +116,7 @@ def main():
         "median of the rounds' ratios.")
     add("")
     head = "| scene | batch | rays | clpath Mrays/s | " + " | ".join(
-        f"tinybvh {s} ({n}) Mrays/s" for s, n in layouts) + " | Embree Mrays/s | clpath / tinybvh BVH4_GPU | " \
+        f"tinybvh {s} ({n}) Mrays/s" for s, n in layouts) + " | Embree Mrays/s | clpath / tinybvh BVH4_GPU (rounds' range) | " \
         "clpath / best tinybvh | clpath / Embree |"
     add(head)
     add("|" + "---|" * 3 + "---:|" * (len(layouts) + 5))
@@ -122,7 +124,10 @@ def main():
         cells = [s["scene"] + f" ({int(s['triangles']):,} tris)", s["batch"], f"{int(s['rays']):,}",
                  fmt(s["clpath_mrays_per_s"])]
         cells += [fmt(s[f"{n}_mrays_per_s"]) for _, n in layouts]
-        cells += [fmt(s["embree_mrays_per_s"]), fmt(s.get("clpath_over_gpu4way", float("nan"))),
+        # The rounds' spread beside the median: on a machine whose speed drifts it says how far one ratio is from the next.
+        spread = f" ({fmt(s['clpath_over_gpu4way_min'])}–{fmt(s['clpath_over_gpu4way_max'])})" \
+            if s.get("rounds", 1) > 1 and "clpath_over_gpu4way_min" in s else ""
+        cells += [fmt(s["embree_mrays_per_s"]), fmt(s.get("clpath_over_gpu4way", float("nan"))) + spread,
                   fmt(s["clpath_over_best_tinybvh"]), fmt(s["clpath_over_embree"])]
         add("| " + " | ".join(cells) + " |")
     add("")
