@@ -13,6 +13,13 @@
 /* gamma(n) = n eps / (1 - n eps): the relative error bound of n roundings (PBR 6.8.1). */
 #define CLP_GAMMA(n) (((float)(n) * 0x1.0p-24f) / (1.0f - (float)(n) * 0x1.0p-24f))
 
+/* Min and max by compare and select rather than fmin/fmax: the builtins'
+ * NaN rules cost a compare and a blend each on x86 (LLVM's minnum). Each
+ * returns its second operand when the first is NaN. For scalars and vectors
+ * alike (a scalar compare gives 1, a vector one -1: select takes a either way). */
+#define CLP_MIN(a, b) select((b), (a), (a) < (b))
+#define CLP_MAX(a, b) select((b), (a), (a) > (b))
+
 typedef struct {
     float3 org;
     float3 dir;
@@ -145,18 +152,15 @@ __attribute__((always_inline)) inline int intersect_triangle(const RayPre* r, fl
      * intersect_test, TinyGrazingTrianglesFarAwayAreHit). A hit within the
      * bound is therefore kept when the origin's distance to the plane, whose
      * bound is tight, shows it clearly in front. */
-    /* None of these is NaN (finite vertices, a finite nonzero det), so a
-     * compare and select gives fmax's result without the NaN rule, which
-     * costs a compare and a blend more per call on x86. */
-#define CLP_MAXF(a, b) ((a) > (b) ? (a) : (b))
-    float max_z = CLP_MAXF(fabs(Az), CLP_MAXF(fabs(Bz), fabs(Cz)));
-    float max_x = CLP_MAXF(fabs(Ax), CLP_MAXF(fabs(Bx), fabs(Cx)));
-    float max_y = CLP_MAXF(fabs(Ay), CLP_MAXF(fabs(By), fabs(Cy)));
+    /* None of these is NaN (finite vertices, a finite nonzero det), so
+     * CLP_MAX gives fmax's result without paying for its NaN rule. */
+    float max_z = CLP_MAX(fabs(Az), CLP_MAX(fabs(Bz), fabs(Cz)));
+    float max_x = CLP_MAX(fabs(Ax), CLP_MAX(fabs(Bx), fabs(Cx)));
+    float max_y = CLP_MAX(fabs(Ay), CLP_MAX(fabs(By), fabs(Cy)));
     float delta_z = CLP_GAMMA(5) * max_z;
     float delta_x = CLP_GAMMA(7) * (max_x + max_z), delta_y = CLP_GAMMA(7) * (max_y + max_z);
     float delta_e = 2.0f * (CLP_GAMMA(4) * max_x * max_y + delta_y * max_x + delta_x * max_y);
-    float max_e = CLP_MAXF(fabs(U), CLP_MAXF(fabs(V), fabs(W)));
-#undef CLP_MAXF
+    float max_e = CLP_MAX(fabs(U), CLP_MAX(fabs(V), fabs(W)));
     float delta_t = 3.0f * (CLP_GAMMA(5) * max_e * max_z + delta_e * max_z + delta_z * max_e) * inv;
     if (t <= delta_t && !origin_clearly_in_front(r, v0, v1, v2)) return 0;
     *t_out = t;
@@ -188,12 +192,6 @@ inline float intersect_box(const RayPre* r, float3 lo, float3 hi, float tmax) {
     return tnear <= tfar ? tnear : INFINITY;
 }
 
-/* Min and max by compare and select rather than fmin/fmax: the builtins'
- * NaN rules cost a compare and a blend each on x86 (LLVM's minnum). Each
- * returns its second operand when the first is NaN. */
-#define CLP_MIN4(a, b) select((b), (a), (a) < (b))
-#define CLP_MAX4(a, b) select((b), (a), (a) > (b))
-
 /* The entry distance of four boxes from each axis's near and far slab
  * distances, or +INFINITY for a miss: the exit distance is widened by the
  * rounding of the subtraction, the product and the reciprocal (Ize 2013, as
@@ -202,8 +200,8 @@ inline float intersect_box(const RayPre* r, float3 lo, float3 hi, float tmax) {
  * that is never NaN (the chains start from 0 and tmax), so it bounds nothing,
  * as with fmin/fmax. */
 inline float4 slab_entry4(float4 nx, float4 ny, float4 nz, float4 fx, float4 fy, float4 fz, float tmax) {
-    float4 tnear = CLP_MAX4(nx, CLP_MAX4(ny, CLP_MAX4(nz, (float4)(0.0f))));
-    float4 tfar = CLP_MIN4(fx, CLP_MIN4(fy, CLP_MIN4(fz, (float4)(tmax)))) * (1.0f + 2.0f * CLP_GAMMA(5));
+    float4 tnear = CLP_MAX(nx, CLP_MAX(ny, CLP_MAX(nz, (float4)(0.0f))));
+    float4 tfar = CLP_MIN(fx, CLP_MIN(fy, CLP_MIN(fz, (float4)(tmax)))) * (1.0f + 2.0f * CLP_GAMMA(5));
     return select((float4)(INFINITY), tnear, tnear <= tfar);
 }
 
@@ -229,8 +227,8 @@ inline float4 intersect_box4(const RayPre* r, float4 lo_x, float4 hi_x, float4 l
     }
     /* A NaN left after the repair (flat box, origin in it) is in both t0 and
      * t1 of its axis, so its near and far are NaN. */
-    return slab_entry4(CLP_MIN4(t0x, t1x), CLP_MIN4(t0y, t1y), CLP_MIN4(t0z, t1z), CLP_MAX4(t0x, t1x),
-                       CLP_MAX4(t0y, t1y), CLP_MAX4(t0z, t1z), tmax);
+    return slab_entry4(CLP_MIN(t0x, t1x), CLP_MIN(t0y, t1y), CLP_MIN(t0z, t1z), CLP_MAX(t0x, t1x),
+                       CLP_MAX(t0y, t1y), CLP_MAX(t0z, t1z), tmax);
 }
 
 /* What the 4-box test reads of the ray at every node, copied out of RayPre
@@ -269,9 +267,6 @@ inline float4 intersect_box4_ordered(const RayBox4* b, global const float4* n, f
                        (n[b->near_z] - b->oz) * b->iz, (n[b->near_x ^ 1] - b->ox) * b->ix,
                        (n[b->near_y ^ 1] - b->oy) * b->iy, (n[b->near_z ^ 1] - b->oz) * b->iz, tmax);
 }
-
-#undef CLP_MIN4
-#undef CLP_MAX4
 
 /* Hit point from barycentrics, with a bound on its distance from the exact
  * point v0 + b1 (v1 - v0) + b2 (v2 - v0), which lies in the triangle's plane
@@ -318,5 +313,8 @@ inline float3 offset_ray_origin(float3 p, float3 err, float3 n, float3 w) {
     return (float3)(next_float_away(po.x, offset.x), next_float_away(po.y, offset.y),
                     next_float_away(po.z, offset.z));
 }
+
+#undef CLP_MIN
+#undef CLP_MAX
 
 #endif
