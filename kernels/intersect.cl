@@ -32,7 +32,6 @@ typedef struct {
     /* Bvh4Node rows of each axis's near and far planes (lo_x = 0, hi_x = 1,
      * lo_y = 2, ...): lo is entered first where 1/dir >= 0. */
     int near_x, near_y, near_z;
-    float3 org_perm; /* the origin permuted as the triangle test permutes vertices: (org[kx], org[ky], org[kz]) */
 } RayPre;
 
 /* Per ray, once: every division is one vector division, and the axes are
@@ -64,9 +63,6 @@ inline RayPre ray_prepare(float3 o, float3 d) {
     r.kx = kx;
     r.ky = ky;
     r.kz = kz;
-    float oa[3];
-    vstore3(o, 0, oa);
-    r.org_perm = (float3)(oa[kx], oa[ky], oa[kz]);
     float3 s = (float3)(da[kx], da[ky], 1.0f) / dz;
     r.sx = s.x;
     r.sy = s.y;
@@ -97,24 +93,24 @@ inline int origin_clearly_in_front(const RayPre* r, float3 v0, float3 v1, float3
     return fabs(dist) > bound && ((dist > 0.0f && towards < 0.0f) || (dist < 0.0f && towards > 0.0f));
 }
 
-/* Watertight ray/triangle test of the triangle whose vertices are the three
- * floats at v0, v1 and v2. On a hit in (0, tmax) returns 1 and writes t and
+/* Watertight ray/triangle test. On a hit in (0, tmax) returns 1 and writes t and
  * the barycentric weights (b1, b2) of v1 and v2. */
-__attribute__((always_inline)) inline int intersect_triangle(const RayPre* r, global const float* v0,
-                                                             global const float* v1, global const float* v2,
+__attribute__((always_inline)) inline int intersect_triangle(const RayPre* r, float3 v0, float3 v1, float3 v2,
                                                              float tmax, float* t_out, float* b1_out, float* b2_out) {
     /* Fused multiply-adds would round the two triangles sharing an edge
      * differently, and a ray could then miss both (Woop et al., section 4). */
 #pragma OPENCL FP_CONTRACT OFF
-    /* Each vertex's coordinates are read in the ray's permuted order straight
-     * from memory, and the origin, permuted once per ray, subtracted: the
-     * same values as permuting v - o (subtraction is per component), without
-     * the private array that an indexed permutation of a vector needs (a
-     * store and three loads per vertex here; scratch memory on a GPU). */
-    const int kx = r->kx, ky = r->ky, kz = r->kz;
-    float3 A = (float3)(v0[kx], v0[ky], v0[kz]) - r->org_perm;
-    float3 B = (float3)(v1[kx], v1[ky], v1[kz]) - r->org_perm;
-    float3 C = (float3)(v2[kx], v2[ky], v2[kz]) - r->org_perm;
+    /* v - o, then permuted: the same values as permuting both first
+     * (subtraction is per component). The permutation is an indexed read of
+     * a private array, a store and three loads, where picking each component
+     * by comparing k took two compares and two selects. */
+    float va[3], vb[3], vc[3];
+    vstore3(v0 - r->org, 0, va);
+    vstore3(v1 - r->org, 0, vb);
+    vstore3(v2 - r->org, 0, vc);
+    float3 A = (float3)(va[r->kx], va[r->ky], va[r->kz]);
+    float3 B = (float3)(vb[r->kx], vb[r->ky], vb[r->kz]);
+    float3 C = (float3)(vc[r->kx], vc[r->ky], vc[r->kz]);
     float sxaz = r->sx * A.z, syaz = r->sy * A.z;
     float sxbz = r->sx * B.z, sybz = r->sy * B.z;
     float sxcz = r->sx * C.z, sycz = r->sy * C.z;
@@ -166,7 +162,7 @@ __attribute__((always_inline)) inline int intersect_triangle(const RayPre* r, gl
     float delta_e = 2.0f * (CLP_GAMMA(4) * max_x * max_y + delta_y * max_x + delta_x * max_y);
     float max_e = CLP_MAX(fabs(U), CLP_MAX(fabs(V), fabs(W)));
     float delta_t = 3.0f * (CLP_GAMMA(5) * max_e * max_z + delta_e * max_z + delta_z * max_e) * inv;
-    if (t <= delta_t && !origin_clearly_in_front(r, vload3(0, v0), vload3(0, v1), vload3(0, v2))) return 0;
+    if (t <= delta_t && !origin_clearly_in_front(r, v0, v1, v2)) return 0;
     *t_out = t;
     *b1_out = V * inv;
     *b2_out = W * inv;

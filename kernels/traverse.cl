@@ -16,17 +16,18 @@
 #include "intersect.cl"
 #include "textures.cl"
 
-/* Out of line: the traversal calls it for every slot in each of its walks,
- * and one copy of this loop (with the triangle test inlined) is smaller.
- * The test reads each vertex's three coordinates in the ray's axis order
- * (intersect_triangle); a vertex row is 16 bytes (shared_structs.h), so the
- * three reads stay within one aligned row. */
+/* TriVerts and BvhNode are rows of four 4-byte fields at 16-byte offsets
+ * (shared_structs.h asserts it): one aligned float4 load fetches a vertex or
+ * a box corner, where three scalar loads would each be a separate access. */
+/* Out of line: the traversal visits a leaf from four slots, and one copy of
+ * this loop (with the triangle test inlined into it) is smaller than four. */
 __attribute__((noinline)) int intersect_leaf(const RayPre* r, global const TriVerts* tris, uint first, uint count,
                                              Hit* hit CLP_ALPHA_PARAM) {
     int found = 0;
     for (uint i = first; i < first + count; ++i) {
+        global const float4* tv = (global const float4*)&tris[i];
         float t, b1, b2;
-        if (intersect_triangle(r, tris[i].v0, tris[i].v1, tris[i].v2, hit->t, &t, &b1, &b2)) {
+        if (intersect_triangle(r, tv[0].xyz, tv[1].xyz, tv[2].xyz, hit->t, &t, &b1, &b2)) {
 #ifdef CLP_HAS_ALPHA
             if (!alpha_keeps_hit(alpha, tris[i].prim, b1, b2, r)) continue; /* a cut-out: as if not there (textures.cl) */
 #endif
@@ -69,14 +70,14 @@ typedef Bvh4Node AccelNode;
  * walk), then the interior children entered before the hit are pushed. */
 #define CLP_VISIT_LEAF(k)                                                       \
     if (d.s##k < hit.t && child.s##k < 0) {                                     \
-        if (intersect_leaf(r, tris, (uint)~child.s##k, count.s##k, &hit CLP_ALPHA_ARG)) break; \
+        if (intersect_leaf(r, tris, (uint)~child.s##k, count.s##k, &hit CLP_ALPHA_ARG)) return hit; \
     }
 #define CLP_PUSH_INTERIOR(k)                                                    \
     if (d.s##k < hit.t && child.s##k > 0) stack[sp++] = child.s##k;
 
-/* traverse_tree's walk, for a ray whose 1/dir is finite (finite = 1) or not
- * (0); always a constant, so each of traverse_tree's two calls compiles to
- * its own loop, with no per-node test of it.
+/* Closest hit in (0, tmax). *visits (may be NULL) counts nodes fetched, for
+ * the traversal heat map and benchmarks. When any_hit is set, returns at the
+ * first hit found (shadow rays): the compiler folds it for constant arguments.
  *
  * Each step fetches one 128-byte Bvh4Node as eight float4 rows and tests its
  * four boxes in one vector slab test. For the closest hit the children are
@@ -84,9 +85,8 @@ typedef Bvh4Node AccelNode;
  * vol. 3, 5.3.4), the leaves among them intersected nearest first, and the
  * interior ones pushed farthest first, so the nearest is the next popped.
  * Any hit will do for shadow rays, so they skip the sort. */
-__attribute__((always_inline)) inline void traverse_tree_walk(global const Bvh4Node* nodes, global const TriVerts* tris,
-                                                              const RayPre* r, float tmax, int any_hit, int finite,
-                                                              Hit* result, uint* visits CLP_ALPHA_PARAM) {
+inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
+                         int any_hit, uint* visits CLP_ALPHA_PARAM) {
     Hit hit;
     hit.t = tmax;
     hit.tri = -1;
@@ -98,6 +98,7 @@ __attribute__((always_inline)) inline void traverse_tree_walk(global const Bvh4N
     int sp = 0;
     int node = 0;
     const RayBox4 rb = ray_box4(r);
+    const int finite = r->inv_dir_finite;
     for (;;) {
         global const float4* n = (global const float4*)&nodes[node];
         if (visits) ++*visits;
@@ -107,46 +108,30 @@ __attribute__((always_inline)) inline void traverse_tree_walk(global const Bvh4N
         uint4 count = as_uint4(n[7]);
         d = select(d, (float4)(INFINITY), child == 0); /* empty slots */
         if (!any_hit) {
-            /* Exactly one child entered: no sort; a leaf is intersected, an
-             * interior child entered at once rather than pushed and popped.
-             * The lanes not entered are masked out of child and count. */
-            int4 entered = d < (float4)(hit.t);
-            int entered_count = -(entered.s0 + entered.s1 + entered.s2 + entered.s3);
-            if (entered_count == 1) {
-                int c = (child.s0 & entered.s0) | (child.s1 & entered.s1) | (child.s2 & entered.s2) |
-                        (child.s3 & entered.s3);
-                if (c > 0) {
-                    node = c;
-                    continue;
+            CLP_SORT2(0, 1, s1023)
+            CLP_SORT2(2, 3, s0132)
+            CLP_SORT2(0, 2, s2103)
+            CLP_SORT2(1, 3, s0321)
+            CLP_SORT2(1, 2, s0213)
+            if (d.s0 < hit.t) {
+                CLP_SORTED_LEAF(0)
+                if (d.s1 < hit.t) {
+                    CLP_SORTED_LEAF(1)
+                    if (d.s2 < hit.t) {
+                        CLP_SORTED_LEAF(2)
+                        if (d.s3 < hit.t) CLP_SORTED_LEAF(3)
+                    }
                 }
-                uint4 n4 = count & as_uint4(entered);
-                intersect_leaf(r, tris, (uint)~c, n4.s0 | n4.s1 | n4.s2 | n4.s3, &hit CLP_ALPHA_ARG);
-            } else if (entered_count > 1) {
-                CLP_SORT2(0, 1, s1023)
-                CLP_SORT2(2, 3, s0132)
-                CLP_SORT2(0, 2, s2103)
-                CLP_SORT2(1, 3, s0321)
-                CLP_SORT2(1, 2, s0213)
+                /* Again, against the hit the leaves may have found. */
                 if (d.s0 < hit.t) {
-                    CLP_SORTED_LEAF(0)
                     if (d.s1 < hit.t) {
-                        CLP_SORTED_LEAF(1)
                         if (d.s2 < hit.t) {
-                            CLP_SORTED_LEAF(2)
-                            if (d.s3 < hit.t) CLP_SORTED_LEAF(3)
+                            if (d.s3 < hit.t) CLP_SORTED_PUSH(3)
+                            CLP_SORTED_PUSH(2)
                         }
+                        CLP_SORTED_PUSH(1)
                     }
-                    /* Again, against the hit the leaves may have found. */
-                    if (d.s0 < hit.t) {
-                        if (d.s1 < hit.t) {
-                            if (d.s2 < hit.t) {
-                                if (d.s3 < hit.t) CLP_SORTED_PUSH(3)
-                                CLP_SORTED_PUSH(2)
-                            }
-                            CLP_SORTED_PUSH(1)
-                        }
-                        CLP_SORTED_PUSH(0)
-                    }
+                    CLP_SORTED_PUSH(0)
                 }
             }
         } else if (any(d < hit.t)) {
@@ -162,23 +147,6 @@ __attribute__((always_inline)) inline void traverse_tree_walk(global const Bvh4N
         if (sp == 0) break;
         node = stack[--sp];
     }
-    *result = hit;
-}
-
-/* Closest hit in (0, tmax). *visits (may be NULL) counts nodes fetched, for
- * the traversal heat map and benchmarks. When any_hit is set, returns at the
- * first hit found (shadow rays): the compiler folds it for constant arguments.
- * Two copies of the walk, one for the rays whose 1/dir is finite (all but
- * the axis-parallel ones): with the branch between the box tests inside
- * the loop, the loop for every ray also kept the other test's constants
- * and a per-node test (about 50 instructions more per ray, callgrind). */
-inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
-                         int any_hit, uint* visits CLP_ALPHA_PARAM) {
-    Hit hit;
-    if (r->inv_dir_finite)
-        traverse_tree_walk(nodes, tris, r, tmax, any_hit, 1, &hit, visits CLP_ALPHA_ARG);
-    else
-        traverse_tree_walk(nodes, tris, r, tmax, any_hit, 0, &hit, visits CLP_ALPHA_ARG);
     return hit;
 }
 

@@ -101,7 +101,8 @@ kernel void probe_triangle(global const float* rays, global const float* tris, g
     if (i >= count) return;
     RayPre r = ray_prepare(load3g(rays + 6 * i), load3g(rays + 6 * i + 3));
     float t = 0.0f, b1 = 0.0f, b2 = 0.0f;
-    int hit = intersect_triangle(&r, tris + 9 * i, tris + 9 * i + 3, tris + 9 * i + 6, INFINITY, &t, &b1, &b2);
+    int hit = intersect_triangle(&r, load3g(tris + 9 * i), load3g(tris + 9 * i + 3), load3g(tris + 9 * i + 6),
+                                 INFINITY, &t, &b1, &b2);
     out[4 * i] = (float)hit;
     out[4 * i + 1] = t;
     out[4 * i + 2] = b1;
