@@ -2,7 +2,8 @@
 # clpath's ray batches against tinybvh's OpenCL kernels on the same rays and the
 # same OpenCL device, interleaved: in every round and scene, `clpath bench rays`
 # (with its Embree baseline) saves its batches, then the tinybvh harness traces
-# them (benchmarks/rays/tinybvh/). Writes run files, medians and a README to
+# them (benchmarks/rays/tinybvh/), with clpath's own kernels paired launch by
+# launch in its process (--paired), the comparison a drifting machine allows. Writes run files, medians and a README to
 # benchmarks/results/RESULT_DIR_NAME/rays-tinybvh/.
 #
 #   git clone https://github.com/jbikker/tinybvh /some/where/tinybvh   (not into this repository)
@@ -74,7 +75,7 @@ for round in $(seq 1 "$ROUNDS"); do
     echo "== round $round: tinybvh on the same rays, $scene (load $l)" | tee -a "$LOG"
     rm -f "$WORK/tinybvh.csv"
     TINYBVH_DIR=$TINYBVH_DIR CLPATH=$CLPATH HARNESS=$HARNESS "$ROOT/benchmarks/rays/tinybvh/run.sh" "$scene" "$rays" \
-      --launches "$LAUNCHES" --layouts "$LAYOUTS" --label "$name" --triangles "$tris" --csv "$WORK/tinybvh.csv" \
+      --launches "$LAUNCHES" --layouts "$LAYOUTS" --label "$name" --triangles "$tris" --csv "$WORK/tinybvh.csv" --paired \
       "${HARNESS_DEVICE[@]}" 2>&1 | grep -v '^[0-9]* warnings\? generated\.$' | tee -a "$LOG"
     [ -f "$WORK/tinybvh.csv" ] || { echo "side_by_side.sh: error: the tinybvh harness wrote no CSV" | tee -a "$LOG" >&2; exit 1; }
     [ -f "$OUT/tinybvh-runs.csv" ] || { printf 'round,load1,'; head -1 "$WORK/tinybvh.csv"; } > "$OUT/tinybvh-runs.csv"

@@ -257,7 +257,8 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     Buffer secondary_hits = ctx.buffer(n * sizeof(Hit), CL_MEM_READ_WRITE, "secondary hits");
     Buffer src = ctx.buffer(n * sizeof(std::uint32_t), CL_MEM_READ_WRITE, "hit list");
 
-    BuildResult built = build_program(ctx, program_source(ray_batch_kernel_files()), ray_batch_build_options(o.accel));
+    const std::string source = program_source(ray_batch_kernel_files()), options = ray_batch_build_options(o.accel);
+    BuildResult built = build_program(ctx, source, options);
     say(std::string("kernels ") + (built.from_cache ? "loaded from cache" : "compiled") + " in " +
         std::to_string(built.seconds) + " s");
     Kernel make_primary = ctx.kernel(built.program.get(), "batch_primary_rays");
@@ -266,6 +267,8 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     Kernel any = ctx.kernel(built.program.get(), "batch_trace_any");
     for (const Kernel* k : {&make_primary, &make_secondary, &closest, &any})
         res.kernels.push_back(kernel_info(*k, ctx.device().device));
+
+    if (o.on_structure) o.on_structure(source, options, node_bytes, structure.triangles);
 
     // The CPU baseline traces the same rays after the device, each batch in turn.
     std::unique_ptr<EmbreeBaseline> embree;

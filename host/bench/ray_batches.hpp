@@ -37,6 +37,12 @@ struct RayBenchOptions {
     // Hears each batch's rays and the device's answers once it is traced (for
     // --save-rays: bench/ray_files.hpp); empty batches too. May be empty.
     std::function<void(RayBatchKind, const std::vector<BatchRay>&, const std::vector<float>& result)> on_traced;
+    // Hears, once and before any batch is traced, the batch kernels' program
+    // (source and build options) and the node and triangle buffers they
+    // traverse (for --save-rays: bench/ray_files.hpp). May be empty.
+    std::function<void(const std::string& source, const std::string& options, const std::vector<unsigned char>& nodes,
+                       const std::vector<TriVerts>& triangles)>
+        on_structure;
 };
 
 // How a batch's device results compare with the CPU reference.

@@ -85,12 +85,24 @@ int run_rays(const RaysOptions& o) {
     // run that fails later removes the ones it wrote, so a folder never holds
     // part of a run.
     std::vector<std::string> saved;
-    if (!o.save_rays.empty())
+    auto save = [&](const std::string& name, const std::string& bytes) {
+        const std::string path = (std::filesystem::path(o.save_rays) / name).string();
+        write_report_file(path, bytes);
+        saved.push_back(path);
+    };
+    if (!o.save_rays.empty()) {
         bo.on_traced = [&](RayBatchKind kind, const std::vector<BatchRay>& rays, const std::vector<float>& result) {
-            const std::string path = (std::filesystem::path(o.save_rays) / ray_file_name(kind)).string();
-            write_report_file(path, encode_ray_file(kind, rays, result));
-            saved.push_back(path);
+            save(ray_file_name(kind), encode_ray_file(kind, rays, result));
         };
+        bo.on_structure = [&](const std::string& source, const std::string& options,
+                              const std::vector<unsigned char>& nodes, const std::vector<TriVerts>& triangles) {
+            save(kBatchKernelsFile, source);
+            save(kBatchOptionsFile, options + "\n");
+            save(kNodesFile, std::string(nodes.begin(), nodes.end()));
+            save(kTrianglesFile, std::string(reinterpret_cast<const char*>(triangles.data()),
+                                             triangles.size() * sizeof(TriVerts)));
+        };
+    }
     RayBenchResult r;
     try {
         r = run_ray_bench(ctx, scene, bo, [](const std::string& s) { std::fprintf(stderr, "clpath: %s\n", s.c_str()); });
@@ -178,7 +190,8 @@ Command add_bench_rays_command(CLI::App& bench) {
     cmd->add_option("--csv", o->csv, "Write the results as CSV to this file");
     cmd->add_option("--save-rays", o->save_rays,
                     "Write each batch's rays and clpath's hits to primary.rays, shadow.rays and diffuse.rays in this "
-                    "existing folder (format: host/bench/ray_files.hpp), for tracing them with another tracer");
+                    "existing folder, with the batch kernels' program, nodes and triangles (format: "
+                    "host/bench/ray_files.hpp), for tracing them with another tracer");
     cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
     cmd->add_flag("--quick", o->quick, "32x24 pixels, one timed launch, every ray checked (for CI)");
     cmd->add_flag("--no-embree", o->no_embree,

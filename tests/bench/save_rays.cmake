@@ -4,7 +4,10 @@
 # header of its batch, as many 32-byte records as the batch's rays (printed),
 # and in them: closest-hit batches with unbounded tmax and as many finite hit
 # distances as hits printed; the shadow batch with tmax 1 (the light) and as
-# many occluded flags (1.0) as hits printed, every other flag 0.0.
+# many occluded flags (1.0) as hits printed, every other flag 0.0. Beside them
+# the batch kernels' inputs: their program (both trace kernels in it), its
+# options, whole 128-byte nodes and one 48-byte record per triangle printed
+# (that they reproduce the saved answers: tests/bench/ray_batches_test.cpp).
 cmake_minimum_required(VERSION 3.22)
 file(REMOVE_RECURSE "${DIR}")
 file(MAKE_DIRECTORY "${DIR}")
@@ -92,3 +95,26 @@ foreach(batch primary shadow diffuse)
     endif()
     math(EXPR kind "${kind} + 1")
 endforeach()
+
+if(NOT out MATCHES "scene: [^,]*, ([0-9]+) triangles")
+    message(FATAL_ERROR "no 'scene: NAME, N triangles' line in the output")
+endif()
+set(triangles ${CMAKE_MATCH_1})
+file(READ "${DIR}/batch_kernels.cl" program)
+if(NOT program MATCHES "kernel void batch_trace_closest" OR NOT program MATCHES "kernel void batch_trace_any")
+    message(FATAL_ERROR "${DIR}/batch_kernels.cl lacks batch_trace_closest or batch_trace_any")
+endif()
+file(READ "${DIR}/batch_kernels.options" options)
+if(NOT options MATCHES "-cl-std=")
+    message(FATAL_ERROR "${DIR}/batch_kernels.options: '${options}' names no OpenCL C version")
+endif()
+file(SIZE "${DIR}/triangles.bin" tri_bytes)
+math(EXPR want "48 * ${triangles}")
+if(NOT tri_bytes EQUAL want)
+    message(FATAL_ERROR "${DIR}/triangles.bin: ${tri_bytes} bytes, expected ${want} (48 per triangle)")
+endif()
+file(SIZE "${DIR}/nodes.bin" node_bytes)
+math(EXPR rest "${node_bytes} % 128")
+if(node_bytes EQUAL 0 OR NOT rest EQUAL 0)
+    message(FATAL_ERROR "${DIR}/nodes.bin: ${node_bytes} bytes, expected whole 128-byte nodes")
+endif()

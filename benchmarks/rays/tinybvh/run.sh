@@ -16,7 +16,9 @@ shift 2
 CLPATH=${CLPATH:-$ROOT/build/clpath}
 HARNESS=${HARNESS:-$ROOT/build/tinybvh-rays/tinybvh_rays}
 [ -d "$RAYS" ] || { echo "run.sh: error: $RAYS: no such folder (clpath bench rays SCENE --save-rays $RAYS first)" >&2; exit 1; }
-if [ ! -x "$HARNESS" ] || [ "$HERE/tinybvh_rays.cpp" -nt "$HARNESS" ] || [ "$TINYBVH_DIR/tiny_bvh.h" -nt "$HARNESS" ]; then
+stale=0
+for f in "$HERE"/tinybvh_rays.cpp "$HERE"/*.hpp "$TINYBVH_DIR/tiny_bvh.h"; do [ "$f" -nt "$HARNESS" ] && stale=1; done
+if [ ! -x "$HARNESS" ] || [ "$stale" = 1 ]; then
   "$HERE/build.sh" "$HARNESS" >&2
 fi
 OBJ=$RAYS/scene/scene.obj

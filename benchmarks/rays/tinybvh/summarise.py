@@ -72,6 +72,13 @@ def main():
                 for k, r in per_round:
                     ratios.append(float(c_at[(scene, batch, k)]["mrays_per_s"]) / float(r["mrays_per_s"]))
                     best_per_round[k] = max(best_per_round[k], float(r["mrays_per_s"]))
+                # --paired: each round's median of launch-by-launch ratios, taken in one process.
+                paired = [float(r["paired_ratio"]) for _, r in per_round if r.get("paired_ratio")]
+                s[f"paired_over_{name}"] = median(paired)
+                s[f"paired_over_{name}_min"] = min(paired, default=float("nan"))
+                s[f"paired_over_{name}_max"] = max(paired, default=float("nan"))
+                s[f"paired_{name}_clpath_differs"] = max((int(r["paired_clpath_differs"]) for _, r in per_round
+                                                          if r.get("paired_clpath_differs")), default=-1)
                 s[f"clpath_over_{name}"] = median(ratios)
                 s[f"clpath_over_{name}_min"] = min(ratios, default=float("nan"))
                 s[f"clpath_over_{name}_max"] = max(ratios, default=float("nan"))
@@ -81,6 +88,7 @@ def main():
             s["load1_max"] = max(float(r["load1"]) for r in c)
             summary.append(s)
 
+    paired_run = int(any(s.get("paired_over_gpu4way", float("nan")) == s.get("paired_over_gpu4way", 0) for s in summary))
     keys = list(summary[0].keys())
     with open(out / "summary.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=keys)
@@ -114,12 +122,18 @@ def main():
         f"profiling events: one warm-up launch, then {meta['launches']} timed; Mrays/s = rays / mean kernel time "
         "for both (Embree: wall clock of each pass). The tables give the median of the rounds; each ratio is the "
         "median of the rounds' ratios.")
+    add("- **Paired**: the harness also ran clpath's own batch kernels (the program and buffers `--save-rays` "
+        "wrote) in its process, turn about with tinybvh's, launch by launch, which goes first alternating; the "
+        "ratio is each round's median of the launches' ratios (clpath's speed over tinybvh's), then the median "
+        "of the rounds. The separate-process ratios beside them compare two programs run one after the other, "
+        "which a machine whose speed drifts between runs can bias; the paired ones do not depend on that.")
     add("")
     head = "| scene | batch | rays | clpath Mrays/s | " + " | ".join(
         f"tinybvh {s} ({n}) Mrays/s" for s, n in layouts) + " | Embree Mrays/s | clpath / tinybvh BVH4_GPU (rounds' range) | " \
         "clpath / best tinybvh | clpath / Embree |"
+    head += " clpath / tinybvh BVH4_GPU, paired (rounds' range) |" if paired_run else ""
     add(head)
-    add("|" + "---|" * 3 + "---:|" * (len(layouts) + 5))
+    add("|" + "---|" * 3 + "---:|" * (len(layouts) + 5 + paired_run))
     for s in summary:
         cells = [s["scene"] + f" ({int(s['triangles']):,} tris)", s["batch"], f"{int(s['rays']):,}",
                  fmt(s["clpath_mrays_per_s"])]
@@ -129,6 +143,10 @@ def main():
             if s.get("rounds", 1) > 1 and "clpath_over_gpu4way_min" in s else ""
         cells += [fmt(s["embree_mrays_per_s"]), fmt(s.get("clpath_over_gpu4way", float("nan"))) + spread,
                   fmt(s["clpath_over_best_tinybvh"]), fmt(s["clpath_over_embree"])]
+        if paired_run:
+            pspread = f" ({fmt(s['paired_over_gpu4way_min'])}–{fmt(s['paired_over_gpu4way_max'])})" \
+                if s.get("rounds", 1) > 1 else ""
+            cells.append("**" + fmt(s.get("paired_over_gpu4way", float("nan"))) + "**" + pspread)
         add("| " + " | ".join(cells) + " |")
     add("")
     add("Hits against clpath's (most mismatched rays in any round; clpath's own column: against its double-precision "
@@ -142,6 +160,12 @@ def main():
             m, o = s[f"{n}_mismatched"], s[f"{n}_near_origin"]
             return f"{m} ({o} at the origin)" if o > 0 else str(m)
         add(f"| {s['scene']} | {s['batch']} | {s['clpath_mismatched']} | " + " | ".join(cell(n) for _, n in layouts) + " |")
+    if paired_run:
+        differs = max(s[f"paired_{n}_clpath_differs"] for s in summary for _, n in layouts)
+        add("")
+        add(f"Paired runs: clpath's kernels, rebuilt in the harness from what `--save-rays` wrote, gave answers "
+            f"differing from the ones clpath saved for {differs} rays (at most, over all rounds, batches and layouts; "
+            "the same kernels on the same device must give 0).")
     add("")
     add(Path(meta["notes"]).read_text().rstrip("\n"))
     add("")

@@ -10,8 +10,7 @@
 #define TINYBVH_IMPLEMENTATION
 #include "tiny_bvh.h"
 
-#define CL_TARGET_OPENCL_VERSION 300
-#include <CL/cl.h>
+#include "clpath_kernels.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -30,47 +29,9 @@
 
 namespace {
 
+using namespace harness;
 using tinybvh::bvhvec3;
 using tinybvh::bvhvec4;
-
-struct Fail : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-// ---- the ray files (format: host/bench/ray_files.hpp in clpath) -----------
-
-struct SavedRay {
-    float o[3], tmax, d[3], result;
-};
-static_assert(sizeof(SavedRay) == 32, "ray record is 32 bytes");
-
-struct RayBatch {
-    std::string name;
-    bool any_hit = false;
-    std::vector<SavedRay> rays;
-};
-
-std::uint32_t le32(const unsigned char* p) { return p[0] | p[1] << 8 | p[2] << 16 | std::uint32_t(p[3]) << 24; }
-
-RayBatch read_rays(const std::string& path, const std::string& name) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Fail(path + ": cannot open (run clpath bench rays --save-rays first)");
-    unsigned char h[32];
-    if (!in.read(reinterpret_cast<char*>(h), 32)) throw Fail(path + ": shorter than its 32-byte header");
-    if (std::memcmp(h, "CLPRAYS1", 8) != 0) throw Fail(path + ": not a clpath ray file (magic)");
-    const std::uint32_t kind = le32(h + 8), query = le32(h + 12), lo = le32(h + 16), hi = le32(h + 20),
-                        record = le32(h + 24);
-    if (kind > 2 || query > 1 || record != 32 || hi != 0) throw Fail(path + ": unsupported header");
-    static const char* names[] = {"primary", "shadow", "diffuse"};
-    if (name != names[kind]) throw Fail(path + ": holds the " + names[kind] + " batch, expected " + name);
-    RayBatch b;
-    b.name = name;
-    b.any_hit = query == 1;
-    b.rays.resize(lo);
-    if (!in.read(reinterpret_cast<char*>(b.rays.data()), std::streamsize(lo) * 32) || in.peek() != EOF)
-        throw Fail(path + ": length does not match its " + std::to_string(lo) + " rays");
-    return b;  // records are little-endian floats, as this x86-64 host reads them
-}
 
 // ---- the triangles: clpath export's OBJ (v and triangular f lines) --------
 
@@ -103,61 +64,6 @@ std::vector<bvhvec4> read_obj(const std::string& path) {
     return tris;
 }
 
-// ---- OpenCL ----------------------------------------------------------------
-
-void check(cl_int e, const char* what) {
-    if (e != CL_SUCCESS) throw Fail(std::string("OpenCL: ") + what + " failed (" + std::to_string(e) + ")");
-}
-
-std::string device_info(cl_device_id d, cl_device_info what) {
-    std::size_t n = 0;
-    clGetDeviceInfo(d, what, 0, nullptr, &n);
-    std::string s(n, '\0');
-    clGetDeviceInfo(d, what, n, s.data(), nullptr);
-    while (!s.empty() && s.back() == '\0') s.pop_back();
-    return s;
-}
-
-struct Cl {
-    cl_device_id device = nullptr;
-    cl_context context = nullptr;
-    cl_command_queue queue = nullptr;
-    cl_program program = nullptr;
-    std::string name;
-    ~Cl() {
-        if (program) clReleaseProgram(program);
-        if (queue) clReleaseCommandQueue(queue);
-        if (context) clReleaseContext(context);
-    }
-};
-
-// The first device whose name holds `want` (any device when empty), over all platforms.
-void open_device(Cl& cl, const std::string& want) {
-    cl_uint np = 0;
-    clGetPlatformIDs(0, nullptr, &np);
-    std::vector<cl_platform_id> ps(np);
-    if (np) clGetPlatformIDs(np, ps.data(), nullptr);
-    for (cl_platform_id p : ps) {
-        cl_uint nd = 0;
-        if (clGetDeviceIDs(p, CL_DEVICE_TYPE_ALL, 0, nullptr, &nd) != CL_SUCCESS) continue;
-        std::vector<cl_device_id> ds(nd);
-        clGetDeviceIDs(p, CL_DEVICE_TYPE_ALL, nd, ds.data(), nullptr);
-        for (cl_device_id d : ds) {
-            const std::string name = device_info(d, CL_DEVICE_NAME);
-            if (!want.empty() && name.find(want) == std::string::npos) continue;
-            cl_int e;
-            cl.device = d;
-            cl.name = name;
-            cl.context = clCreateContext(nullptr, 1, &d, nullptr, nullptr, &e);
-            check(e, "clCreateContext");
-            const cl_queue_properties props[] = {CL_QUEUE_PROPERTIES, CL_QUEUE_PROFILING_ENABLE, 0};
-            cl.queue = clCreateCommandQueueWithProperties(cl.context, d, props, &e);
-            check(e, "clCreateCommandQueueWithProperties");
-            return;
-        }
-    }
-    throw Fail("no OpenCL device" + (want.empty() ? std::string() : " whose name holds '" + want + "'"));
-}
 
 // Our kernels beside tinybvh's own batch kernels: tinybvh's traverse.cl has
 // occlusion functions for each layout but no batch kernel that calls them.
@@ -217,18 +123,6 @@ void build_program(Cl& cl, const std::string& tinybvh_dir, std::string& options)
     }
 }
 
-struct Mem {
-    cl_mem m = nullptr;
-    Mem(const Cl& cl, std::size_t bytes, const void* host) {
-        cl_int e;
-        m = clCreateBuffer(cl.context, CL_MEM_READ_WRITE | (host ? CL_MEM_COPY_HOST_PTR : 0), std::max<std::size_t>(bytes, 16),
-                           const_cast<void*>(host), &e);
-        check(e, "clCreateBuffer");
-    }
-    ~Mem() { clReleaseMemObject(m); }
-    Mem(const Mem&) = delete;
-    Mem& operator=(const Mem&) = delete;
-};
 
 // ---- one layout's kernels over one batch ---------------------------------
 
@@ -240,6 +134,7 @@ struct Options {
     std::size_t workgroup = 64, triangles = 0;
     double tolerance = 1e-3;
     bool hq = true;
+    bool paired = false;
 };
 
 struct Timing {
@@ -247,27 +142,61 @@ struct Timing {
     double mean = 0, median = 0, best = 0;
 };
 
-Timing time_kernel(const Cl& cl, cl_kernel k, std::size_t n, std::size_t wg, int launches) {
-    // A global size rounded up to the work-group: tinybvh's batch kernels have
-    // no bounds check, so the harness pads the ray buffers instead.
-    const std::size_t global = (n + wg - 1) / wg * wg;
+Timing summarise(std::vector<double> ms) {
     Timing t;
-    for (int l = 0; l <= launches; ++l) {  // the first launch warms up and is not counted
-        cl_event ev;
-        check(clEnqueueNDRangeKernel(cl.queue, k, 1, nullptr, &global, &wg, 0, nullptr, &ev), "clEnqueueNDRangeKernel");
-        check(clWaitForEvents(1, &ev), "clWaitForEvents");
-        cl_ulong a = 0, b = 0;
-        clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_START, sizeof a, &a, nullptr);
-        clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof b, &b, nullptr);
-        clReleaseEvent(ev);
-        if (l > 0) t.ms.push_back(double(b - a) * 1e-6);
-    }
-    std::vector<double> s = t.ms;
-    std::sort(s.begin(), s.end());
-    t.best = s.front();
-    t.median = s.size() % 2 ? s[s.size() / 2] : 0.5 * (s[s.size() / 2 - 1] + s[s.size() / 2]);
-    for (double x : s) t.mean += x / double(s.size());
+    t.ms = ms;
+    std::sort(ms.begin(), ms.end());
+    t.best = ms.front();
+    t.median = ms.size() % 2 ? ms[ms.size() / 2] : 0.5 * (ms[ms.size() / 2 - 1] + ms[ms.size() / 2]);
+    for (double x : ms) t.mean += x / double(ms.size());
     return t;
+}
+
+// tinybvh's batch kernels have no bounds check, so the harness pads the ray
+// buffers to the global size (launch_ms rounds n up to the work-group).
+Timing time_kernel(const Cl& cl, cl_kernel k, std::size_t n, std::size_t wg, int launches) {
+    std::vector<double> ms;
+    for (int l = 0; l <= launches; ++l) {  // the first launch warms up and is not counted
+        const double t = launch_ms(cl, k, n, wg);
+        if (l > 0) ms.push_back(t);
+    }
+    return summarise(ms);
+}
+
+// --paired: tinybvh's kernel and clpath's, launched turn about (which goes
+// first alternates), each warmed up once. ratio[l] is clpath's speed over
+// tinybvh's in launch l: tinybvh's time over clpath's.
+struct Paired {
+    Timing tinybvh, clpath;
+    std::vector<double> ratio;
+};
+
+Paired time_paired(const Cl& cl, cl_kernel k, ClpathBatch& c, std::size_t n, std::size_t wg, int launches) {
+    launch_ms(cl, k, n, wg);
+    c.launch();
+    std::vector<double> tb, cp;
+    Paired p;
+    for (int l = 0; l < launches; ++l) {
+        double a, b;
+        if (l % 2 == 0) {
+            a = launch_ms(cl, k, n, wg);
+            b = c.launch();
+        } else {
+            b = c.launch();
+            a = launch_ms(cl, k, n, wg);
+        }
+        tb.push_back(a), cp.push_back(b), p.ratio.push_back(a / b);
+    }
+    p.tinybvh = summarise(tb);
+    p.clpath = summarise(cp);
+    std::sort(p.ratio.begin(), p.ratio.end());
+    return p;
+}
+
+double quantile(const std::vector<double>& sorted, double q) {
+    const double x = q * double(sorted.size() - 1);
+    const std::size_t i = std::size_t(x);
+    return i + 1 < sorted.size() ? sorted[i] + (x - double(i)) * (sorted[i + 1] - sorted[i]) : sorted[i];
 }
 
 // tinybvh's GPU ray: O, D (normalised, as tinybvh::Ray makes it), rD =
@@ -367,13 +296,23 @@ void run(const Options& o) {
     std::printf("triangles: %u from %s\n", n, o.obj.c_str());
     if (o.triangles && o.triangles != n)
         throw Fail(o.obj + ": " + std::to_string(n) + " triangles, but the rays' scene has " + std::to_string(o.triangles));
+    std::unique_ptr<ClpathProgram> clpath;
+    if (o.paired) {
+        clpath = std::make_unique<ClpathProgram>(cl, o.rays);
+        if (clpath->triangle_count() != n)
+            throw Fail(o.rays + "/triangles.bin: " + std::to_string(clpath->triangle_count()) + " triangles, the OBJ " +
+                       std::to_string(n));
+        std::printf("paired with clpath's batch kernels from %s (options: %s)\n", o.rays.c_str(), clpath->options().c_str());
+    }
 
     FILE* csv = nullptr;
     if (!o.csv.empty()) {
         csv = std::fopen(o.csv.c_str(), "w");
         if (!csv) throw Fail(o.csv + ": cannot write");
         std::fprintf(csv, "scene,device,triangles,tracer,layout,kernel,build,build_ms,batch,rays,hits,workgroup,launches,"
-                          "mean_ms,median_ms,best_ms,mrays_per_s,mismatched,t_differs,only_clpath,only_tinybvh,near_origin,max_rel_dt\n");
+                          "mean_ms,median_ms,best_ms,mrays_per_s,mismatched,t_differs,only_clpath,only_tinybvh,near_origin,max_rel_dt,"
+                          "paired_clpath_mean_ms,paired_clpath_mrays_per_s,paired_ratio,paired_ratio_q1,paired_ratio_q3,"
+                          "paired_clpath_differs\n");
     }
     // The structures are built one at a time, so only one is held at once.
     for (const std::string& name : o.layouts) {
@@ -435,7 +374,17 @@ void run(const Options& o) {
                 occ = std::make_unique<Mem>(cl, padded * sizeof(std::uint32_t), nullptr);
                 check(clSetKernelArg(k, arg++, sizeof(cl_mem), &occ->m), "clSetKernelArg");
             }
-            const Timing t = time_kernel(cl, k, b.rays.size(), o.workgroup, o.launches);
+            Timing t;
+            Paired pr;
+            std::size_t clpath_differs = 0;
+            if (clpath) {
+                ClpathBatch cb(cl, *clpath, b, o.workgroup);
+                pr = time_paired(cl, k, cb, b.rays.size(), o.workgroup, o.launches);
+                t = pr.tinybvh;
+                clpath_differs = cb.differs_from_saved(b);
+            } else {
+                t = time_kernel(cl, k, b.rays.size(), o.workgroup, o.launches);
+            }
             clReleaseKernel(k);
             Check c;
             if (b.any_hit) {
@@ -454,13 +403,25 @@ void run(const Options& o) {
                         L.structure.c_str(), batch.c_str(), b.rays.size(), c.hits, kname.c_str(), t.mean, t.median, t.best,
                         o.launches, mrays, c.mismatched, c.t_differs, o.tolerance, c.only_clpath, c.only_tinybvh, c.near_origin, c.max_rel_dt);
             if (!c.first.empty()) std::printf("  first mismatch: %s\n", c.first.c_str());
+            const double clpath_mrays = clpath ? double(b.rays.size()) / (pr.clpath.mean * 1e-3) * 1e-6 : 0;
+            if (clpath)
+                std::printf("  paired, launch by launch: clpath %.3f ms mean, %.3f Mrays/s; clpath/%s per launch: median %.3f "
+                            "(quartiles %.3f-%.3f); clpath's answers: %zu differ from those it saved\n",
+                            pr.clpath.mean, clpath_mrays, L.structure.c_str(), quantile(pr.ratio, 0.5),
+                            quantile(pr.ratio, 0.25), quantile(pr.ratio, 0.75), clpath_differs);
             std::fflush(stdout);
-            if (csv)
-                std::fprintf(csv, "%s,\"%s\",%u,tinybvh,%s,%s,%s,%.1f,%s,%zu,%zu,%zu,%d,%.4f,%.4f,%.4f,%.4f,%zu,%zu,%zu,%zu,%zu,%.3g\n",
+            if (csv) {
+                std::fprintf(csv, "%s,\"%s\",%u,tinybvh,%s,%s,%s,%.1f,%s,%zu,%zu,%zu,%d,%.4f,%.4f,%.4f,%.4f,%zu,%zu,%zu,%zu,%zu,%.3g",
                              o.label.c_str(), cl.name.c_str(), n, L.structure.c_str(), kname.c_str(),
                              o.hq ? "BuildHQ" : "Build", L.build_ms, batch.c_str(), b.rays.size(), c.hits, o.workgroup,
                              o.launches, t.mean, t.median, t.best, mrays, c.mismatched, c.t_differs, c.only_clpath,
                              c.only_tinybvh, c.near_origin, c.max_rel_dt);
+                if (clpath)
+                    std::fprintf(csv, ",%.4f,%.4f,%.4f,%.4f,%.4f,%zu\n", pr.clpath.mean, clpath_mrays, quantile(pr.ratio, 0.5),
+                                 quantile(pr.ratio, 0.25), quantile(pr.ratio, 0.75), clpath_differs);
+                else
+                    std::fprintf(csv, ",,,,,,\n");
+            }
         }
     }
     if (csv && std::fclose(csv) != 0) throw Fail(o.csv + ": cannot write");
@@ -481,7 +442,10 @@ const char* kUsage =
     "  --triangles N     fail unless the OBJ holds N triangles (the count clpath printed)\n"
     "  --device TEXT     the first OpenCL device whose name holds TEXT (default: the first device)\n"
     "  --label NAME      the scene's name in the CSV\n"
-    "  --csv FILE        write one row per layout and batch\n";
+    "  --csv FILE        write one row per layout and batch\n"
+    "  --paired          also run clpath's own batch kernels from DIR (batch_kernels.cl, nodes.bin, triangles.bin,\n"
+    "                    as --save-rays writes them) in this process, launch by launch turn about with tinybvh's,\n"
+    "                    and report clpath's speed over tinybvh's per launch (median, quartiles)\n";
 
 std::vector<std::string> split(const std::string& s) {
     std::vector<std::string> v;
@@ -498,6 +462,10 @@ int main(int argc, char** argv) {
         Options o;
         for (int i = 1; i < argc; ++i) {
             const std::string a = argv[i];
+            if (a == "--paired") {
+                o.paired = true;
+                continue;
+            }
             if (a == "-h" || a == "--help") {
                 std::fputs(kUsage, stdout);
                 return 0;

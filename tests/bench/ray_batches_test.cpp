@@ -1,0 +1,89 @@
+// What bench rays hands out for a harness (on_structure: the batch program's
+// source and options, the node and triangle buffers; host/bench/ray_files.hpp)
+// must be all a harness needs to run clpath's own kernels in its process:
+// rebuilt from those alone, the kernels give back the very answers clpath
+// saved for the same rays.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "bench/ray_batches.hpp"
+#include "scene/scene_loader.hpp"
+#include "support/test_device.hpp"
+
+namespace clpath {
+namespace {
+
+struct Saved {
+    std::string source, options;
+    std::vector<unsigned char> nodes;
+    std::vector<TriVerts> triangles;
+    std::vector<BatchRay> rays[3];
+    std::vector<float> results[3];
+};
+
+Saved run_and_save() {
+    const Scene scene = load_scene("cornell");
+    RayBenchOptions o;
+    o.width = 32, o.height = 24, o.launches = 1, o.embree = false;
+    Saved s;
+    o.on_structure = [&](const std::string& source, const std::string& options,
+                         const std::vector<unsigned char>& nodes, const std::vector<TriVerts>& triangles) {
+        s.source = source, s.options = options, s.nodes = nodes, s.triangles = triangles;
+    };
+    o.on_traced = [&](RayBatchKind kind, const std::vector<BatchRay>& rays, const std::vector<float>& result) {
+        s.rays[int(kind)] = rays;
+        s.results[int(kind)] = result;
+    };
+    run_ray_bench(test::device(), scene, o);
+    return s;
+}
+
+// One batch through the saved program and buffers, as a harness runs it:
+// the answers it would write to a ray file.
+std::vector<float> retrace(const Saved& s, const std::vector<TriVerts>& triangles, RayBatchKind kind) {
+    Context& ctx = test::device();
+    BuildResult built = build_program(ctx, s.source, s.options);
+    const bool any = kind == RayBatchKind::Shadow;
+    Kernel k = ctx.kernel(built.program.get(), any ? "batch_trace_any" : "batch_trace_closest");
+    const std::vector<BatchRay>& rays = s.rays[int(kind)];
+    const auto n = std::uint32_t(rays.size());
+    Buffer nodes = test::upload(s.nodes, "nodes"), tris = test::upload(triangles, "triangles");
+    Buffer ray_buf = test::upload(rays, "rays");
+    Buffer out = ctx.buffer(n * (any ? sizeof(int) : sizeof(Hit)), CL_MEM_READ_WRITE, "answers");
+    k.arg(0, nodes).arg(1, tris).arg(2, ray_buf).arg(3, out).arg(4, n);
+    test::run(k, n);
+    return any ? any_hit_results(test::download<int>(out, n)) : closest_hit_results(test::download<Hit>(out, n));
+}
+
+// Bitwise, so that +infinity (a miss) compares equal to itself.
+std::size_t differing(const std::vector<float>& a, const std::vector<float>& b) {
+    std::size_t d = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) d += std::memcmp(&a[i], &b[i], sizeof(float)) != 0;
+    return d;
+}
+
+TEST(RayBatchStructure, SavedProgramAndBuffersGiveTheSavedAnswers) {
+    const Saved s = run_and_save();
+    ASSERT_NE(s.source.find("kernel void batch_trace_closest"), std::string::npos);
+    ASSERT_FALSE(s.nodes.empty());
+    ASSERT_FALSE(s.triangles.empty());
+    for (RayBatchKind kind : {RayBatchKind::Primary, RayBatchKind::Shadow, RayBatchKind::Diffuse}) {
+        SCOPED_TRACE(ray_file_name(kind));
+        ASSERT_EQ(s.rays[int(kind)].size(), 32u * 24u * CLP_BATCH_SAMPLES);
+        EXPECT_EQ(differing(retrace(s, s.triangles, kind), s.results[int(kind)]), 0u);
+    }
+}
+
+// Control: the comparison sees the buffers. The same program over the
+// triangles in reverse order (the nodes now name other triangles) answers
+// differently.
+TEST(RayBatchStructure, ControlOtherTrianglesGiveOtherAnswers) {
+    const Saved s = run_and_save();
+    std::vector<TriVerts> reversed(s.triangles.rbegin(), s.triangles.rend());
+    EXPECT_GT(differing(retrace(s, reversed, RayBatchKind::Primary), s.results[int(RayBatchKind::Primary)]), 100u);
+}
+
+}  // namespace
+}  // namespace clpath
