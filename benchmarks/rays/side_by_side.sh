@@ -3,7 +3,8 @@
 # same OpenCL device, interleaved: in every round and scene, `clpath bench rays`
 # (with its Embree baseline) saves its batches, then the tinybvh harness traces
 # them (benchmarks/rays/tinybvh/), with clpath's own kernels paired launch by
-# launch in its process (--paired), the comparison a drifting machine allows. Writes run files, medians and a README to
+# launch in its process (--paired), the comparison a drifting machine allows.
+# Writes run files, medians and a README to
 # benchmarks/results/RESULT_DIR_NAME/rays-tinybvh/.
 #
 #   git clone https://github.com/jbikker/tinybvh /some/where/tinybvh   (not into this repository)
