@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <future>
 #include <thread>
 
@@ -167,6 +168,31 @@ void finish_timing(BatchResult& b) {
     b.mrays_per_s = b.mean_ms > 0 ? double(b.rays) / (b.mean_ms * 1e-3) * 1e-6 : 0;
 }
 
+// Median and quartiles of the launch pairs' ratios, interpolated between order statistics.
+void finish_ab(AbResult& ab) {
+    std::vector<double> r = ab.ratios;
+    std::sort(r.begin(), r.end());
+    auto at = [&](double q) {
+        const double x = q * double(r.size() - 1);
+        const auto i = std::size_t(x);
+        return i + 1 < r.size() ? r[i] + (x - double(i)) * (r[i + 1] - r[i]) : r[i];
+    };
+    ab.median = at(0.5);
+    ab.q1 = at(0.25);
+    ab.q3 = at(0.75);
+    ab.ran = true;
+}
+
+// How many of the variant's answers (in out) differ, bit for bit, from the built-in kernels' (a).
+template <class T>
+std::size_t count_differing(Context& ctx, const Buffer& out, const std::vector<T>& a) {
+    std::vector<T> b(a.size());
+    ctx.read(out, b.data(), a.size() * sizeof(T));
+    std::size_t d = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) d += std::memcmp(&a[i], &b[i], sizeof(T)) != 0;
+    return d;
+}
+
 }  // namespace
 
 const std::vector<std::string>& ray_batch_kernel_files() {
@@ -246,7 +272,8 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
                     {"primary hits", n * sizeof(Hit)},
                     {"secondary rays", n * sizeof(BatchRay)},
                     {"secondary hits", n * sizeof(Hit)},
-                    {"hit list", n * sizeof(std::uint32_t)}});
+                    {"hit list", n * sizeof(std::uint32_t)},
+                    {"the variant's answers", o.ab_kernels.empty() ? 0 : n * sizeof(Hit)}});
     Buffer nodes = ctx.buffer(node_bytes.size(), CL_MEM_READ_ONLY, "acceleration nodes", node_bytes.data());
     Buffer tris = ctx.buffer(structure.triangles.size() * sizeof(TriVerts), CL_MEM_READ_ONLY, "triangles",
                              structure.triangles.data());
@@ -256,6 +283,9 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     Buffer secondary = ctx.buffer(n * sizeof(BatchRay), CL_MEM_READ_WRITE, "secondary rays");
     Buffer secondary_hits = ctx.buffer(n * sizeof(Hit), CL_MEM_READ_WRITE, "secondary hits");
     Buffer src = ctx.buffer(n * sizeof(std::uint32_t), CL_MEM_READ_WRITE, "hit list");
+    // Hit is the larger answer: any-hit kernels write one int per ray.
+    Buffer variant_out = ctx.buffer(o.ab_kernels.empty() ? sizeof(Hit) : n * sizeof(Hit), CL_MEM_READ_WRITE,
+                                    "the variant's answers");
 
     const std::string source = program_source(ray_batch_kernel_files()), options = ray_batch_build_options(o.accel);
     BuildResult built = build_program(ctx, source, options);
@@ -270,6 +300,17 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
 
     if (o.on_structure) o.on_structure(source, options, node_bytes, structure.triangles);
 
+    // The variant (ab_kernels): the same root files and options, some files replaced.
+    std::optional<BuildResult> variant;
+    std::optional<Kernel> closest_v, any_v;
+    if (!o.ab_kernels.empty()) {
+        variant = build_program(ctx, program_source_replacing(ray_batch_kernel_files(), o.ab_kernels), options);
+        closest_v.emplace(ctx.kernel(variant->program.get(), "batch_trace_closest"));
+        any_v.emplace(ctx.kernel(variant->program.get(), "batch_trace_any"));
+        say(std::string("variant kernels ") + (variant->from_cache ? "loaded from cache" : "compiled") + " in " +
+            std::to_string(variant->seconds) + " s");
+    }
+
     // The CPU baseline traces the same rays after the device, each batch in turn.
     std::unique_ptr<EmbreeBaseline> embree;
     std::vector<std::uint32_t> leaf_of;
@@ -282,14 +323,24 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
         }
     }
 
-    // One warm-up launch, then the timed ones; every launch writes the same results.
-    auto time_batch = [&](BatchResult& b, Kernel& k) {
+    // One warm-up launch, then the timed ones; every launch writes the same
+    // results. With a variant v (set up with the same arguments but its own
+    // output), each launch of k is paired with one of v, which goes first
+    // alternating.
+    auto time_batch = [&](BatchResult& b, Kernel& k, std::optional<Kernel>& v) {
         for (int l = 0; l <= o.launches; ++l) {
-            cl_event ev = ctx.launch(k, b.rays, o.workgroup, true);
-            const double s = ev ? event_seconds(ev) : 0.0;
-            if (l > 0) b.launch_ms.push_back(s * 1e3);
+            double t[2] = {0, 0};  // built-in, variant
+            for (int j = 0; j < (v ? 2 : 1); ++j) {
+                const int which = v ? (l + j) % 2 : 0;
+                cl_event ev = ctx.launch(which ? *v : k, b.rays, o.workgroup, true);
+                t[which] = ev ? event_seconds(ev) : 0.0;
+            }
+            if (l == 0) continue;
+            b.launch_ms.push_back(t[0] * 1e3);
+            if (v && t[1] > 0) b.ab.ratios.push_back(t[0] / t[1]);
         }
         finish_timing(b);
+        if (!b.ab.ratios.empty()) finish_ab(b.ab);
     };
 
     make_primary.arg(0, cam_buf).arg(1, primary);
@@ -299,11 +350,13 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     prim.rays = n;
     closest.arg(0, nodes).arg(1, tris).arg(2, primary).arg(3, primary_hits).arg(4, std::uint32_t(n));
     say("primary: tracing " + std::to_string(n) + " rays");
-    time_batch(prim, closest);
+    if (closest_v) closest_v->arg(0, nodes).arg(1, tris).arg(2, primary).arg(3, variant_out).arg(4, std::uint32_t(n));
+    time_batch(prim, closest, closest_v);
     std::vector<BatchRay> primary_rays(n);
     std::vector<Hit> primary_result(n);
     ctx.read(primary, primary_rays);
     ctx.read(primary_hits, primary_result);
+    if (closest_v) prim.ab.differing = count_differing(ctx, variant_out, primary_result);
     std::vector<std::uint32_t> hit_list;
     for (std::size_t i = 0; i < n; ++i)
         if (primary_result[i].tri >= 0) hit_list.push_back(std::uint32_t(i));
@@ -329,11 +382,13 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
         make_rays(0);
         any.arg(0, nodes).arg(1, tris).arg(2, secondary).arg(3, secondary_hits).arg(4, m);
         say("shadow: tracing " + std::to_string(m) + " rays");
-        time_batch(shadow, any);
+        if (any_v) any_v->arg(0, nodes).arg(1, tris).arg(2, secondary).arg(3, variant_out).arg(4, m);
+        time_batch(shadow, any, any_v);
         std::vector<BatchRay> rays(m);
         std::vector<int> occluder(m);
         ctx.read(secondary, rays);
         ctx.read(secondary_hits, occluder.data(), m * sizeof(int));
+        if (any_v) shadow.ab.differing = count_differing(ctx, variant_out, occluder);
         for (int x : occluder) shadow.hits += x >= 0;
         shadow.agreement = check_any(reference, rays, occluder, o.check);
         if (o.on_traced) o.on_traced(RayBatchKind::Shadow, rays, any_hit_results(occluder));
@@ -350,11 +405,13 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
         make_rays(1);
         closest.arg(0, nodes).arg(1, tris).arg(2, secondary).arg(3, secondary_hits).arg(4, m);
         say("diffuse: tracing " + std::to_string(m) + " rays");
-        time_batch(diffuse, closest);
+        if (closest_v) closest_v->arg(0, nodes).arg(1, tris).arg(2, secondary).arg(3, variant_out).arg(4, m);
+        time_batch(diffuse, closest, closest_v);
         std::vector<BatchRay> rays(m);
         std::vector<Hit> hits(m);
         ctx.read(secondary, rays);
         ctx.read(secondary_hits, hits);
+        if (closest_v) diffuse.ab.differing = count_differing(ctx, variant_out, hits);
         for (const auto& h : hits) diffuse.hits += h.tri >= 0;
         diffuse.agreement = check_closest(reference, structure.triangles, rays, hits, o.check);
         if (o.on_traced) o.on_traced(RayBatchKind::Diffuse, rays, closest_hit_results(hits));
@@ -387,6 +444,15 @@ std::string describe_embree(const BatchResult& b) {
                   e.hits, e.mean_ms, e.best_ms, e.mrays_per_s, b.over_embree(), a.checked, a.identical_percent(), a.ties,
                   a.near_origin, a.mismatched);
     return a.first_mismatch.empty() ? std::string(buf) : std::string(buf) + "\n  Embree's first mismatch: " + a.first_mismatch;
+}
+
+std::string describe_ab(const BatchResult& b) {
+    if (!b.ab.ran) return "";
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "  A/B: variant/built-in %.3f (quartiles %.3f-%.3f) over %zu launch pairs; answers differ for %zu rays",
+                  b.ab.median, b.ab.q1, b.ab.q3, b.ab.ratios.size(), b.ab.differing);
+    return buf;
 }
 
 }  // namespace clpath

@@ -12,6 +12,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -34,6 +35,12 @@ struct RayBenchOptions {
     std::uint32_t seed = 0;                    // diffuse directions
     BvhBuildOptions bvh;
     bool embree = true;  // trace every batch with Embree too, when built with it (bench/embree_baseline.hpp)
+    // A variant of the kernels to time against the built-in ones: kernel
+    // files (name, text), each replacing the built-in file of that name. Each
+    // batch's launches then alternate between the two programs, which goes
+    // first alternating too, so that a drift in the machine's speed weighs on
+    // both alike (BatchResult::ab). Empty: off.
+    std::vector<std::pair<std::string, std::string>> ab_kernels;
     // Hears each batch's rays and the device's answers once it is traced (for
     // --save-rays: bench/ray_files.hpp); empty batches too. May be empty.
     std::function<void(RayBatchKind, const std::vector<BatchRay>&, const std::vector<float>& result)> on_traced;
@@ -83,6 +90,14 @@ struct EmbreeBatch {
     BatchAgreement agreement;
 };
 
+// The variant's launches against the built-in kernels' (RayBenchOptions::ab_kernels).
+struct AbResult {
+    bool ran = false;
+    std::vector<double> ratios;        // per launch pair: built-in time / variant time (> 1: the variant is faster)
+    double median = 0, q1 = 0, q3 = 0;  // of ratios
+    std::size_t differing = 0;         // rays whose answer differs, bit for bit, from the built-in kernels'
+};
+
 struct BatchResult {
     std::string name;  // primary, shadow, diffuse
     std::size_t rays = 0, hits = 0;
@@ -91,6 +106,7 @@ struct BatchResult {
     double mrays_per_s = 0;  // rays / mean kernel time
     BatchAgreement agreement;
     EmbreeBatch embree;
+    AbResult ab;
     // The device's Mrays/s over Embree's; 0 when Embree did not run.
     double over_embree() const { return embree.ran && embree.mrays_per_s > 0 ? mrays_per_s / embree.mrays_per_s : 0; }
 };
@@ -127,5 +143,8 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
 std::string describe(const BatchResult& batch);
 // "  Embree: 40.1 ms mean / 39.8 ms best, 61.29 Mrays/s, clpath/Embree 0.39; CPU check: ..."
 std::string describe_embree(const BatchResult& batch);
+// The A/B line under it: "  A/B: variant/built-in 1.03 (quartiles 0.99-1.05) over 10
+// launch pairs; answers differ for 0 rays"; empty when no variant ran.
+std::string describe_ab(const BatchResult& batch);
 
 }  // namespace clpath

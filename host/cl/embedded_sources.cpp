@@ -69,6 +69,19 @@ std::string program_source(const std::vector<std::string>& roots, const SourceTa
     return a.out;
 }
 
+std::string program_source_replacing(const std::vector<std::string>& roots,
+                                     const std::vector<std::pair<std::string, std::string>>& replacements) {
+    Assembler a;
+    a.files = index(embedded_sources());
+    for (const auto& [name, text] : replacements) {
+        auto it = a.files.find(name);
+        if (it == a.files.end()) throw Error(name + " is not one of clpath's kernel files, so it replaces none");
+        it->second = text.c_str();  // replacements outlive the assembly
+    }
+    for (const auto& r : roots) a.include(r, "");
+    return a.out;
+}
+
 const std::vector<std::string>& renderer_kernel_files() {
     static const std::vector<std::string> files = {"integrator.cl"};
     return files;

@@ -3,6 +3,7 @@
 // clpath runs from any directory, and the one function that assembles them
 // into a program.
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace clpath {
@@ -30,6 +31,12 @@ const std::string& embedded_source(const std::string& name);
 // #line directives keep compiler messages pointing at the right file and line.
 // Throws clpath::Error for a file that is not embedded.
 std::string program_source(const std::vector<std::string>& roots, const SourceTable& extra = {});
+
+// program_source with some embedded files replaced by other texts of the same
+// names (a variant of the kernels, for comparing it with them: bench rays
+// --ab-kernels). Throws clpath::Error naming a file that replaces none.
+std::string program_source_replacing(const std::vector<std::string>& roots,
+                                     const std::vector<std::pair<std::string, std::string>>& replacements);
 
 // The renderer's root kernel files.
 const std::vector<std::string>& renderer_kernel_files();

@@ -1,7 +1,9 @@
 // clpath bench rays: the ray-batch traversal benchmark (bench/ray_batches.hpp).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -24,7 +26,7 @@ namespace {
 struct RaysOptions {
     std::string scene;
     int width = 480, height = 320;
-    std::string camera, light, csv, device, accel = "bvh", save_rays;
+    std::string camera, light, csv, device, accel = "bvh", save_rays, ab_kernels;
     int launches = 5;
     std::size_t workgroup = 64, check = std::size_t(1) << 18;
     std::uint32_t seed = 0;
@@ -47,6 +49,27 @@ std::vector<float> parse_numbers(const std::string& text, const std::string& wha
     return v;
 }
 
+// The kernel files (*.cl, *.h) in dir, by file name, for --ab-kernels.
+std::vector<std::pair<std::string, std::string>> read_kernel_folder(const std::string& dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) throw Error("--ab-kernels " + dir + ": no such folder");
+    std::vector<std::pair<std::string, std::string>> files;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+        const std::string ext = e.path().extension().string();
+        if (!e.is_regular_file() || (ext != ".cl" && ext != ".h")) continue;
+        std::ifstream in(e.path(), std::ios::binary);
+        std::ostringstream text;
+        text << in.rdbuf();
+        if (!in) throw Error("--ab-kernels: cannot read " + e.path().string());
+        files.emplace_back(e.path().filename().string(), text.str());
+    }
+    if (ec) throw Error("--ab-kernels " + dir + ": " + ec.message());
+    if (files.empty()) throw Error("--ab-kernels " + dir + ": no kernel files (*.cl, *.h) in it");
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
 int run_rays(const RaysOptions& o) {
     RayBenchOptions bo;
     bo.width = o.quick ? 32 : o.width;
@@ -64,6 +87,7 @@ int run_rays(const RaysOptions& o) {
     }
     if (!o.csv.empty()) check_report_path(o.csv, "--csv");
     if (!o.save_rays.empty()) check_ray_folder(o.save_rays, "--save-rays");
+    if (!o.ab_kernels.empty()) bo.ab_kernels = read_kernel_folder(o.ab_kernels);
 
     Scene scene = load_scene(o.scene);
     for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
@@ -123,6 +147,7 @@ int run_rays(const RaysOptions& o) {
     for (const auto& b : r.batches) {
         std::printf("%s\n", describe(b).c_str());
         if (b.embree.ran) std::printf("%s\n", describe_embree(b).c_str());
+        if (b.ab.ran) std::printf("%s\n", describe_ab(b).c_str());
         agree = agree && b.agreement.agrees();
     }
     if (!o.csv.empty()) {
@@ -192,6 +217,11 @@ Command add_bench_rays_command(CLI::App& bench) {
                     "Write each batch's rays and clpath's hits to primary.rays, shadow.rays and diffuse.rays in this "
                     "existing folder, with the batch kernels' program, nodes and triangles (format: "
                     "host/bench/ray_files.hpp), for tracing them with another tracer");
+    cmd->add_option("--ab-kernels", o->ab_kernels,
+                    "Also time a variant of the batch kernels: the kernel files in this folder, each replacing "
+                    "clpath's file of that name; launches alternate between the two, and each batch prints the "
+                    "variant's speed over the built-in kernels' (median of the launch pairs, quartiles) and how "
+                    "many answers differ");
     cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
     cmd->add_flag("--quick", o->quick, "32x24 pixels, one timed launch, every ray checked (for CI)");
     cmd->add_flag("--no-embree", o->no_embree,

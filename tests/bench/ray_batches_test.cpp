@@ -2,15 +2,18 @@
 // source and options, the node and triangle buffers; host/bench/ray_files.hpp)
 // must be all a harness needs to run clpath's own kernels in its process:
 // rebuilt from those alone, the kernels give back the very answers clpath
-// saved for the same rays.
+// saved for the same rays. And a variant of the kernels (ab_kernels) is timed
+// launch by launch against the built-in ones, its answers compared bitwise.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstring>
 
 #include "bench/ray_batches.hpp"
+#include "cl/embedded_sources.hpp"
 #include "scene/scene_loader.hpp"
 #include "support/test_device.hpp"
+#include "util/error.hpp"
 
 namespace clpath {
 namespace {
@@ -83,6 +86,56 @@ TEST(RayBatchStructure, ControlOtherTrianglesGiveOtherAnswers) {
     const Saved s = run_and_save();
     std::vector<TriVerts> reversed(s.triangles.rbegin(), s.triangles.rend());
     EXPECT_GT(differing(retrace(s, reversed, RayBatchKind::Primary), s.results[int(RayBatchKind::Primary)]), 100u);
+}
+
+RayBenchResult run_variant(const std::vector<std::pair<std::string, std::string>>& files) {
+    const Scene scene = load_scene("cornell");
+    RayBenchOptions o;
+    o.width = 32, o.height = 24, o.launches = 3, o.embree = false;
+    o.ab_kernels = files;
+    return run_ray_bench(test::device(), scene, o);
+}
+
+TEST(RayBatchVariant, SameKernelsTimedInTurnGiveTheSameAnswers) {
+    const RayBenchResult r = run_variant({{"traverse.cl", embedded_source("traverse.cl")}});
+    ASSERT_EQ(r.batches.size(), 3u);
+    for (const BatchResult& b : r.batches) {
+        SCOPED_TRACE(b.name);
+        ASSERT_TRUE(b.ab.ran);
+        EXPECT_EQ(b.ab.ratios.size(), 3u);  // one per timed launch
+        EXPECT_EQ(b.launch_ms.size(), 3u);
+        for (double x : b.ab.ratios) EXPECT_GT(x, 0.0);
+        EXPECT_LE(b.ab.q1, b.ab.median);
+        EXPECT_LE(b.ab.median, b.ab.q3);
+        EXPECT_EQ(b.ab.differing, 0u);
+        EXPECT_FALSE(describe_ab(b).empty());
+    }
+}
+
+// Control: a variant whose triangle test never hits answers differently for
+// every ray that hit (all primaries in the closed box).
+TEST(RayBatchVariant, ControlAVariantThatNeverHitsDiffers) {
+    std::string text = embedded_source("intersect.cl");
+    const std::string after_edges = "float det = U + V + W;";
+    const std::size_t at = text.find(after_edges);
+    ASSERT_NE(at, std::string::npos);
+    text.insert(at, "return 0; ");
+    const RayBenchResult r = run_variant({{"intersect.cl", text}});
+    const BatchResult& primary = r.batches[0];
+    ASSERT_TRUE(primary.ab.ran);
+    EXPECT_GT(primary.hits, 0u);
+    EXPECT_EQ(primary.ab.differing, primary.hits);
+    EXPECT_EQ(r.batches[0].agreement.mismatched, 0u);  // the built-in kernels' answers are still the ones checked
+}
+
+TEST(RayBatchVariant, AFileThatIsNotAKernelFileIsNamed) {
+    try {
+        run_variant({{"traversal.cl", "kernel void x() {}"}});
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("traversal.cl is not one of clpath's kernel files"), std::string::npos)
+            << e.what();
+    }
 }
 
 }  // namespace

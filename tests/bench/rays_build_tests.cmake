@@ -31,3 +31,13 @@ clpath_cli_test(bench_rays_save_rays_missing_folder FAIL ARGS bench rays cornell
                 --save-rays ${CLI_OUT}/no-such-folder OUTPUT "--save-rays .*no-such-folder: folder does not exist")
 clpath_cli_test(bench_rays_save_rays_not_a_folder FAIL ARGS bench rays cornell --quick --no-embree
                 --save-rays ${CMAKE_SOURCE_DIR}/scenes/bunny.json OUTPUT "--save-rays .*bunny.json: is a file, not a folder")
+
+# --ab-kernels: a variant timed against the built-in kernels (an unchanged copy: its answers are the same).
+file(MAKE_DIRECTORY ${CLI_OUT}/ab-kernels)
+configure_file(${CMAKE_SOURCE_DIR}/kernels/traverse.cl ${CLI_OUT}/ab-kernels/traverse.cl COPYONLY)
+clpath_cli_test(bench_rays_ab_kernels ARGS bench rays cornell --quick --no-embree --ab-kernels ${CLI_OUT}/ab-kernels
+                OUTPUT "diffuse: [0-9]+ rays .*\n  A/B: variant/built-in [0-9.]+ \\(quartiles [0-9.]+-[0-9.]+\\) over 1 launch pairs; answers differ for 0 rays")
+clpath_cli_test(bench_rays_ab_kernels_missing_folder FAIL ARGS bench rays cornell --quick --no-embree
+                --ab-kernels ${CLI_OUT}/no-such-folder OUTPUT "--ab-kernels .*no-such-folder: no such folder")
+clpath_cli_test(bench_rays_ab_kernels_no_kernel_files FAIL ARGS bench rays cornell --quick --no-embree
+                --ab-kernels ${CMAKE_SOURCE_DIR}/tests/cli/data OUTPUT "--ab-kernels .*data: no kernel files")
