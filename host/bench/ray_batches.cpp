@@ -273,7 +273,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
                     {"secondary rays", n * sizeof(BatchRay)},
                     {"secondary hits", n * sizeof(Hit)},
                     {"hit list", n * sizeof(std::uint32_t)},
-                    {"the variant's answers", o.ab_kernels.empty() ? 0 : n * sizeof(Hit)}});
+                    {"the variant's answers", o.ab() ? n * sizeof(Hit) : 0}});
     Buffer nodes = ctx.buffer(node_bytes.size(), CL_MEM_READ_ONLY, "acceleration nodes", node_bytes.data());
     Buffer tris = ctx.buffer(structure.triangles.size() * sizeof(TriVerts), CL_MEM_READ_ONLY, "triangles",
                              structure.triangles.data());
@@ -284,7 +284,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     Buffer secondary_hits = ctx.buffer(n * sizeof(Hit), CL_MEM_READ_WRITE, "secondary hits");
     Buffer src = ctx.buffer(n * sizeof(std::uint32_t), CL_MEM_READ_WRITE, "hit list");
     // Hit is the larger answer: any-hit kernels write one int per ray.
-    Buffer variant_out = ctx.buffer(o.ab_kernels.empty() ? sizeof(Hit) : n * sizeof(Hit), CL_MEM_READ_WRITE,
+    Buffer variant_out = ctx.buffer(o.ab() ? n * sizeof(Hit) : sizeof(Hit), CL_MEM_READ_WRITE,
                                     "the variant's answers");
 
     const std::string source = program_source(ray_batch_kernel_files()), options = ray_batch_build_options(o.accel);
@@ -300,11 +300,12 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
 
     if (o.on_structure) o.on_structure(source, options, node_bytes, structure.triangles);
 
-    // The variant (ab_kernels): the same root files and options, some files replaced.
+    // The variant: the same root files and options, some files replaced (ab_kernels), options added (ab_options).
     std::optional<BuildResult> variant;
     std::optional<Kernel> closest_v, any_v;
-    if (!o.ab_kernels.empty()) {
-        variant = build_program(ctx, program_source_replacing(ray_batch_kernel_files(), o.ab_kernels), options);
+    if (o.ab()) {
+        variant = build_program(ctx, program_source_replacing(ray_batch_kernel_files(), o.ab_kernels),
+                                o.ab_options.empty() ? options : options + " " + o.ab_options);
         closest_v.emplace(ctx.kernel(variant->program.get(), "batch_trace_closest"));
         any_v.emplace(ctx.kernel(variant->program.get(), "batch_trace_any"));
         say(std::string("variant kernels ") + (variant->from_cache ? "loaded from cache" : "compiled") + " in " +

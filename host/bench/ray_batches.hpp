@@ -36,11 +36,14 @@ struct RayBenchOptions {
     BvhBuildOptions bvh;
     bool embree = true;  // trace every batch with Embree too, when built with it (bench/embree_baseline.hpp)
     // A variant of the kernels to time against the built-in ones: kernel
-    // files (name, text), each replacing the built-in file of that name. Each
-    // batch's launches then alternate between the two programs, which goes
-    // first alternating too, so that a drift in the machine's speed weighs on
-    // both alike (BatchResult::ab). Empty: off.
+    // files (name, text), each replacing the built-in file of that name, and
+    // build options added to the built-in ones. Each batch's launches then
+    // alternate between the two programs, which goes first alternating too,
+    // so that a drift in the machine's speed weighs on both alike
+    // (BatchResult::ab). Both empty: off.
     std::vector<std::pair<std::string, std::string>> ab_kernels;
+    std::string ab_options;
+    bool ab() const { return !ab_kernels.empty() || !ab_options.empty(); }
     // Hears each batch's rays and the device's answers once it is traced (for
     // --save-rays: bench/ray_files.hpp); empty batches too. May be empty.
     std::function<void(RayBatchKind, const std::vector<BatchRay>&, const std::vector<float>& result)> on_traced;
@@ -90,7 +93,7 @@ struct EmbreeBatch {
     BatchAgreement agreement;
 };
 
-// The variant's launches against the built-in kernels' (RayBenchOptions::ab_kernels).
+// The variant's launches against the built-in kernels' (RayBenchOptions::ab_kernels, ab_options).
 struct AbResult {
     bool ran = false;
     std::vector<double> ratios;        // per launch pair: built-in time / variant time (> 1: the variant is faster)

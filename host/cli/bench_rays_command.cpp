@@ -26,7 +26,7 @@ namespace {
 struct RaysOptions {
     std::string scene;
     int width = 480, height = 320;
-    std::string camera, light, csv, device, accel = "bvh", save_rays, ab_kernels;
+    std::string camera, light, csv, device, accel = "bvh", save_rays, ab_kernels, ab_options;
     int launches = 5;
     std::size_t workgroup = 64, check = std::size_t(1) << 18;
     std::uint32_t seed = 0;
@@ -88,6 +88,7 @@ int run_rays(const RaysOptions& o) {
     if (!o.csv.empty()) check_report_path(o.csv, "--csv");
     if (!o.save_rays.empty()) check_ray_folder(o.save_rays, "--save-rays");
     if (!o.ab_kernels.empty()) bo.ab_kernels = read_kernel_folder(o.ab_kernels);
+    bo.ab_options = o.ab_options;
 
     Scene scene = load_scene(o.scene);
     for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
@@ -222,6 +223,9 @@ Command add_bench_rays_command(CLI::App& bench) {
                     "clpath's file of that name; launches alternate between the two, and each batch prints the "
                     "variant's speed over the built-in kernels' (median of the launch pairs, quartiles) and how "
                     "many answers differ");
+    cmd->add_option("--ab-options", o->ab_options,
+                    "Build options added for the variant's program (alone, or with --ab-kernels), e.g. "
+                    "--ab-options=\"-DNAME -cl-denorms-are-zero\"");
     cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
     cmd->add_flag("--quick", o->quick, "32x24 pixels, one timed launch, every ray checked (for CI)");
     cmd->add_flag("--no-embree", o->no_embree,

@@ -88,11 +88,13 @@ TEST(RayBatchStructure, ControlOtherTrianglesGiveOtherAnswers) {
     EXPECT_GT(differing(retrace(s, reversed, RayBatchKind::Primary), s.results[int(RayBatchKind::Primary)]), 100u);
 }
 
-RayBenchResult run_variant(const std::vector<std::pair<std::string, std::string>>& files) {
+RayBenchResult run_variant(const std::vector<std::pair<std::string, std::string>>& files,
+                           const std::string& options = "") {
     const Scene scene = load_scene("cornell");
     RayBenchOptions o;
     o.width = 32, o.height = 24, o.launches = 3, o.embree = false;
     o.ab_kernels = files;
+    o.ab_options = options;
     return run_ray_bench(test::device(), scene, o);
 }
 
@@ -126,6 +128,27 @@ TEST(RayBatchVariant, ControlAVariantThatNeverHitsDiffers) {
     EXPECT_GT(primary.hits, 0u);
     EXPECT_EQ(primary.ab.differing, primary.hits);
     EXPECT_EQ(r.batches[0].agreement.mismatched, 0u);  // the built-in kernels' answers are still the ones checked
+}
+
+// ab_options reach the variant's program, and only it: a define that stops
+// the variant's triangle test makes it differ on every hit; without it, or
+// given to nothing but the built-in kernels' text, nothing differs.
+TEST(RayBatchVariant, OptionsReachTheVariant) {
+    std::string text = embedded_source("intersect.cl");
+    const std::size_t at = text.find("float det = U + V + W;");
+    ASSERT_NE(at, std::string::npos);
+    text.insert(at, "\n#ifdef CLP_TEST_NEVER_HIT\nreturn 0;\n#endif\n");
+    const RayBenchResult stopped = run_variant({{"intersect.cl", text}}, "-DCLP_TEST_NEVER_HIT");
+    EXPECT_EQ(stopped.batches[0].ab.differing, stopped.batches[0].hits);
+    EXPECT_GT(stopped.batches[0].hits, 0u);
+    const RayBenchResult plain = run_variant({{"intersect.cl", text}});
+    for (const BatchResult& b : plain.batches) EXPECT_EQ(b.ab.differing, 0u) << b.name;
+    // Options alone make a variant too.
+    const RayBenchResult options_only = run_variant({}, "-DCLP_TEST_NEVER_HIT");
+    for (const BatchResult& b : options_only.batches) {
+        EXPECT_TRUE(b.ab.ran) << b.name;
+        EXPECT_EQ(b.ab.differing, 0u) << b.name;  // the built-in files do not read the define
+    }
 }
 
 TEST(RayBatchVariant, AFileThatIsNotAKernelFileIsNamed) {

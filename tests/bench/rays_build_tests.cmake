@@ -41,3 +41,5 @@ clpath_cli_test(bench_rays_ab_kernels_missing_folder FAIL ARGS bench rays cornel
                 --ab-kernels ${CLI_OUT}/no-such-folder OUTPUT "--ab-kernels .*no-such-folder: no such folder")
 clpath_cli_test(bench_rays_ab_kernels_no_kernel_files FAIL ARGS bench rays cornell --quick --no-embree
                 --ab-kernels ${CMAKE_SOURCE_DIR}/tests/cli/data OUTPUT "--ab-kernels .*data: no kernel files")
+clpath_cli_test(bench_rays_ab_options ARGS bench rays cornell --quick --no-embree --ab-options=-DCLP_UNREAD_DEFINE
+                OUTPUT "primary: [0-9]+ rays .*\n  A/B: variant/built-in [0-9.]+ \\(quartiles [0-9.]+-[0-9.]+\\) over 1 launch pairs; answers differ for 0 rays")
