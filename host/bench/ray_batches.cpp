@@ -284,8 +284,8 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     Buffer secondary_hits = ctx.buffer(n * sizeof(Hit), CL_MEM_READ_WRITE, "secondary hits");
     Buffer src = ctx.buffer(n * sizeof(std::uint32_t), CL_MEM_READ_WRITE, "hit list");
     // Hit is the larger answer: any-hit kernels write one int per ray.
-    Buffer variant_out = ctx.buffer(o.ab() ? n * sizeof(Hit) : sizeof(Hit), CL_MEM_READ_WRITE,
-                                    "the variant's answers");
+    Buffer variant_out;
+    if (o.ab()) variant_out = ctx.buffer(n * sizeof(Hit), CL_MEM_READ_WRITE, "the variant's answers");
 
     const std::string source = program_source(ray_batch_kernel_files()), options = ray_batch_build_options(o.accel);
     BuildResult built = build_program(ctx, source, options);
@@ -324,11 +324,14 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
         }
     }
 
-    // One warm-up launch, then the timed ones; every launch writes the same
-    // results. With a variant v (set up with the same arguments but its own
-    // output), each launch of k is paired with one of v, which goes first
-    // alternating.
-    auto time_batch = [&](BatchResult& b, Kernel& k, std::optional<Kernel>& v) {
+    // Traces b.rays rays into out with trace kernel k: one warm-up launch,
+    // then the timed ones; every launch writes the same results. With a
+    // variant v (the same arguments, its own output), each launch of k is
+    // paired with one of v, which goes first alternating.
+    auto time_batch = [&](BatchResult& b, Kernel& k, std::optional<Kernel>& v, const Buffer& rays, const Buffer& out) {
+        const auto count = std::uint32_t(b.rays);
+        k.arg(0, nodes).arg(1, tris).arg(2, rays).arg(3, out).arg(4, count);
+        if (v) v->arg(0, nodes).arg(1, tris).arg(2, rays).arg(3, variant_out).arg(4, count);
         for (int l = 0; l <= o.launches; ++l) {
             double t[2] = {0, 0};  // built-in, variant
             for (int j = 0; j < (v ? 2 : 1); ++j) {
@@ -349,10 +352,8 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     BatchResult prim;
     prim.name = "primary";
     prim.rays = n;
-    closest.arg(0, nodes).arg(1, tris).arg(2, primary).arg(3, primary_hits).arg(4, std::uint32_t(n));
     say("primary: tracing " + std::to_string(n) + " rays");
-    if (closest_v) closest_v->arg(0, nodes).arg(1, tris).arg(2, primary).arg(3, variant_out).arg(4, std::uint32_t(n));
-    time_batch(prim, closest, closest_v);
+    time_batch(prim, closest, closest_v, primary, primary_hits);
     std::vector<BatchRay> primary_rays(n);
     std::vector<Hit> primary_result(n);
     ctx.read(primary, primary_rays);
@@ -381,10 +382,8 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     shadow.rays = m;
     if (m > 0) {
         make_rays(0);
-        any.arg(0, nodes).arg(1, tris).arg(2, secondary).arg(3, secondary_hits).arg(4, m);
         say("shadow: tracing " + std::to_string(m) + " rays");
-        if (any_v) any_v->arg(0, nodes).arg(1, tris).arg(2, secondary).arg(3, variant_out).arg(4, m);
-        time_batch(shadow, any, any_v);
+        time_batch(shadow, any, any_v, secondary, secondary_hits);
         std::vector<BatchRay> rays(m);
         std::vector<int> occluder(m);
         ctx.read(secondary, rays);
@@ -404,10 +403,8 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     diffuse.rays = m;
     if (m > 0) {
         make_rays(1);
-        closest.arg(0, nodes).arg(1, tris).arg(2, secondary).arg(3, secondary_hits).arg(4, m);
         say("diffuse: tracing " + std::to_string(m) + " rays");
-        if (closest_v) closest_v->arg(0, nodes).arg(1, tris).arg(2, secondary).arg(3, variant_out).arg(4, m);
-        time_batch(diffuse, closest, closest_v);
+        time_batch(diffuse, closest, closest_v, secondary, secondary_hits);
         std::vector<BatchRay> rays(m);
         std::vector<Hit> hits(m);
         ctx.read(secondary, rays);

@@ -4,6 +4,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "util/error.hpp"
 
@@ -46,6 +47,14 @@ struct Assembler {
     }
 };
 
+// The program from these files, root files in order.
+std::string assemble(ByName files, const std::vector<std::string>& roots) {
+    Assembler a;
+    a.files = std::move(files);
+    for (const auto& r : roots) a.include(r, "");
+    return a.out;
+}
+
 }  // namespace
 
 const std::string& embedded_source(const std::string& name) {
@@ -60,26 +69,22 @@ const std::string& embedded_source(const std::string& name) {
 }
 
 std::string program_source(const std::vector<std::string>& roots, const SourceTable& extra) {
-    Assembler a;
-    a.files = index(embedded_sources());
+    ByName files = index(embedded_sources());
     for (const auto& s : extra)
-        if (!a.files.emplace(s.name, s.text).second)
+        if (!files.emplace(s.name, s.text).second)
             throw Error(std::string("internal: two embedded kernel sources are named ") + s.name);
-    for (const auto& r : roots) a.include(r, "");
-    return a.out;
+    return assemble(std::move(files), roots);
 }
 
 std::string program_source_replacing(const std::vector<std::string>& roots,
                                      const std::vector<std::pair<std::string, std::string>>& replacements) {
-    Assembler a;
-    a.files = index(embedded_sources());
+    ByName files = index(embedded_sources());
     for (const auto& [name, text] : replacements) {
-        auto it = a.files.find(name);
-        if (it == a.files.end()) throw Error(name + " is not one of clpath's kernel files, so it replaces none");
+        auto it = files.find(name);
+        if (it == files.end()) throw Error(name + " is not one of clpath's kernel files, so it replaces none");
         it->second = text.c_str();  // replacements outlive the assembly
     }
-    for (const auto& r : roots) a.include(r, "");
-    return a.out;
+    return assemble(std::move(files), roots);
 }
 
 const std::vector<std::string>& renderer_kernel_files() {

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 #include "bench/ray_batches.hpp"
 #include "cl/embedded_sources.hpp"
@@ -114,30 +115,30 @@ TEST(RayBatchVariant, SameKernelsTimedInTurnGiveTheSameAnswers) {
     }
 }
 
+// intersect.cl with code put in the triangle test after the edge functions.
+std::string intersect_with(const std::string& code) {
+    std::string text = embedded_source("intersect.cl");
+    const std::size_t at = text.find("float det = U + V + W;");
+    if (at == std::string::npos) throw std::logic_error("intersect.cl no longer has the line this test edits");
+    return text.insert(at, code);
+}
+
 // Control: a variant whose triangle test never hits answers differently for
 // every ray that hit (all primaries in the closed box).
 TEST(RayBatchVariant, ControlAVariantThatNeverHitsDiffers) {
-    std::string text = embedded_source("intersect.cl");
-    const std::string after_edges = "float det = U + V + W;";
-    const std::size_t at = text.find(after_edges);
-    ASSERT_NE(at, std::string::npos);
-    text.insert(at, "return 0; ");
-    const RayBenchResult r = run_variant({{"intersect.cl", text}});
+    const RayBenchResult r = run_variant({{"intersect.cl", intersect_with("return 0; ")}});
     const BatchResult& primary = r.batches[0];
     ASSERT_TRUE(primary.ab.ran);
     EXPECT_GT(primary.hits, 0u);
     EXPECT_EQ(primary.ab.differing, primary.hits);
-    EXPECT_EQ(r.batches[0].agreement.mismatched, 0u);  // the built-in kernels' answers are still the ones checked
+    EXPECT_EQ(primary.agreement.mismatched, 0u);  // the built-in kernels' answers are still the ones checked
 }
 
 // ab_options reach the variant's program, and only it: a define that stops
 // the variant's triangle test makes it differ on every hit; without it, or
 // given to nothing but the built-in kernels' text, nothing differs.
 TEST(RayBatchVariant, OptionsReachTheVariant) {
-    std::string text = embedded_source("intersect.cl");
-    const std::size_t at = text.find("float det = U + V + W;");
-    ASSERT_NE(at, std::string::npos);
-    text.insert(at, "\n#ifdef CLP_TEST_NEVER_HIT\nreturn 0;\n#endif\n");
+    const std::string text = intersect_with("\n#ifdef CLP_TEST_NEVER_HIT\nreturn 0;\n#endif\n");
     const RayBenchResult stopped = run_variant({{"intersect.cl", text}}, "-DCLP_TEST_NEVER_HIT");
     EXPECT_EQ(stopped.batches[0].ab.differing, stopped.batches[0].hits);
     EXPECT_GT(stopped.batches[0].hits, 0u);
