@@ -22,15 +22,18 @@ inline void make_frame(float3 n, float3* t, float3* b) {
 inline float2 sample_concentric_disk(float u1, float u2) {
     float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
     if (a == 0.0f && b == 0.0f) return (float2)(0.0f, 0.0f);
-    float r, phi;
+    /* The angle in units of pi, for sinpi and cospi: their argument needs no
+     * reduction by an inexact pi (PoCL's sin and cos spend about 5 % of a
+     * render in it), and pi/4 * (b/a) is then one rounding fewer. */
+    float r, phi_pi;
     if (fabs(a) > fabs(b)) {
         r = a;
-        phi = (CLP_PI / 4.0f) * (b / a);
+        phi_pi = 0.25f * (b / a);
     } else {
         r = b;
-        phi = (CLP_PI / 2.0f) - (CLP_PI / 4.0f) * (a / b);
+        phi_pi = 0.5f - 0.25f * (a / b);
     }
-    return (float2)(r * cos(phi), r * sin(phi));
+    return (float2)(r * cospi(phi_pi), r * sinpi(phi_pi));
 }
 
 /* Cosine-weighted direction about +z (Malley's method: lift a uniform disk
@@ -47,8 +50,8 @@ inline float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.0f ? 
 inline float3 sample_uniform_hemisphere(float u1, float u2) {
     float z = u1;
     float r = sqrt(fmax(0.0f, 1.0f - z * z));
-    float phi = 2.0f * CLP_PI * u2;
-    return (float3)(r * cos(phi), r * sin(phi), z);
+    float phi_pi = 2.0f * u2; /* in units of pi, as in sample_concentric_disk */
+    return (float3)(r * cospi(phi_pi), r * sinpi(phi_pi), z);
 }
 
 inline float uniform_hemisphere_pdf(float cos_theta) { return cos_theta > 0.0f ? 0.5f * CLP_INV_PI : 0.0f; }
@@ -79,11 +82,39 @@ inline float3 to_world(float3 v, float3 n) {
     return v.x * t + v.y * b + v.z * n;
 }
 
+/* atan2(y, x) for y >= 0, in [0, pi]; NaN for a NaN operand, 0 for y = x = 0
+ * (either zero's sign). PoCL's atan2 handles every quadrant and special value
+ * and cost 5 % of a render here. atan(r) = r P(r^2) for r = min/max in [0, 1]:
+ * P is the degree-8 Chebyshev fit of atan(sqrt(s))/sqrt(s) on [0, 1] (mpmath
+ * chebyfit; its relative error 2.3e-8), evaluated by Horner with fused
+ * multiply-adds. Then atan(y/x) = pi/2 - atan(x/y) above the diagonal, and pi
+ * minus that for x < 0. tests/kernels/sampling_test.cpp checks the relative
+ * error against double precision and derives its bound. */
+inline float atan2_upper(float y, float x) {
+    float ax = fabs(x);
+    /* Compares, not fmin/fmax, so a NaN operand reaches r. */
+    float lo = y < ax ? y : ax, hi = y < ax ? ax : y;
+    float r = hi == 0.0f ? 0.0f : lo / hi;
+    float s = r * r;
+    float p = 0.00276628346f;
+    p = fma(p, s, -0.015731249f);
+    p = fma(p, s, 0.0421376228f);
+    p = fma(p, s, -0.0745685473f);
+    p = fma(p, s, 0.106183708f);
+    p = fma(p, s, -0.141977981f);
+    p = fma(p, s, 0.199918717f);
+    p = fma(p, s, -0.333330363f);
+    p = fma(p, s, 1.0f);
+    float a = r * p;
+    a = y > ax ? 0.5f * CLP_PI - a : a;
+    return x < 0.0f ? CLP_PI - a : a;
+}
+
 /* Solid angle of the spherical triangle of unit vectors a, b, c, by Van
  * Oosterom & Strackee (1983): tan(omega / 2) = |a.(b x c)| / (1 + a.b + b.c + c.a).
  * Unlike the angle-excess formula it does not cancel for small triangles. */
 inline float spherical_triangle_area(float3 a, float3 b, float3 c) {
-    return 2.0f * atan2(fabs(dot(a, cross(b, c))), 1.0f + dot(a, b) + dot(b, c) + dot(c, a));
+    return 2.0f * atan2_upper(fabs(dot(a, cross(b, c))), 1.0f + dot(a, b) + dot(b, c) + dot(c, a));
 }
 
 /* Unit vector v minus its component along unit vector n, normalised; zero
@@ -105,9 +136,11 @@ inline float3 sample_spherical_triangle(float3 a, float3 b, float3 c, float area
     float a_hat = u1 * area;
     /* s, t = sin, cos of (a_hat - alpha) by the angle-difference identities,
      * from cos and sin of alpha already at hand (as pbrt-v4's
-     * SampleSphericalTriangle does): no acos. (sin and cos rather than
-     * sincos, whose private out-argument Oclgrind cannot check.) */
-    float sin_a = sin(a_hat), cos_a = cos(a_hat);
+     * SampleSphericalTriangle does): no acos. (sinpi and cospi, as in
+     * sample_concentric_disk, rather than sincos, whose private out-argument
+     * Oclgrind cannot check.) */
+    float a_hat_pi = a_hat * CLP_INV_PI;
+    float sin_a = sinpi(a_hat_pi), cos_a = cospi(a_hat_pi);
     float s = sin_a * cos_alpha - cos_a * sin_alpha, t = cos_a * cos_alpha + sin_a * sin_alpha;
     float u = t - cos_alpha, v = s + sin_alpha * dot(a, b);
     float q = clamp(((v * t - u * s) * cos_alpha - v) / ((v * s + u * t) * sin_alpha), -1.0f, 1.0f);

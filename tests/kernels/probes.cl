@@ -81,6 +81,16 @@ kernel void probe_cosine(global float* out, uint count, uint seed) {
     out[3 * i + 2] = d.z;
 }
 
+/* atan2_upper(y[i], x[i]) (sampling.cl) and, as the control's wrong answer,
+ * atan(y/x) without the quadrant rule. */
+kernel void probe_atan2_upper(global const float* y, global const float* x, global float* out,
+                              global float* naive, uint count) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    out[i] = atan2_upper(y[i], x[i]);
+    naive[i] = atan(y[i] / x[i]);
+}
+
 /* Directions from a unit normal n[i] through the same frame code the materials use. */
 kernel void probe_cosine_about(global const float* normals, global float* out, uint count, uint seed) {
     uint i = get_global_id(0);

@@ -1,8 +1,11 @@
 // Cosine-weighted hemisphere sampling (kernels/sampling.cl): the directions
-// follow cos(theta)/pi, checked by a chi-square goodness-of-fit test.
+// follow cos(theta)/pi, checked by a chi-square goodness-of-fit test. And the
+// upper-half-plane atan2 the solid angle of a light triangle is taken with.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <random>
 
 #include "support/statistics.hpp"
 #include "support/test_device.hpp"
@@ -77,4 +80,82 @@ TEST(CosineSampling, AboutArbitraryNormals) {
     }
     auto r = test::chi_square(obs, exp);
     EXPECT_GT(r.p_value, kAlpha) << "chi2 = " << r.statistic;
+}
+
+namespace {
+struct Atan2Results {
+    std::vector<float> y, x, out, naive;
+};
+
+Atan2Results run_atan2_upper(std::vector<float> y, std::vector<float> x) {
+    const auto n = static_cast<std::uint32_t>(y.size());
+    Kernel k = test::device().kernel(test::probe_program(), "probe_atan2_upper");
+    Buffer yb = test::upload(y), xb = test::upload(x);
+    Buffer out = test::device().buffer(y.size() * sizeof(float), CL_MEM_READ_WRITE, "atan2");
+    Buffer naive = test::device().buffer(y.size() * sizeof(float), CL_MEM_READ_WRITE, "atan");
+    k.arg(0, yb).arg(1, xb).arg(2, out).arg(3, naive).arg(4, n);
+    test::run(k, n);
+    return {std::move(y), std::move(x), test::download<float>(out, n), test::download<float>(naive, n)};
+}
+
+// The largest error of got[i] relative to atan2(y[i], x[i]) in double.
+double worst_relative_error(const Atan2Results& r, const std::vector<float>& got) {
+    double worst = 0.0;
+    for (std::size_t i = 0; i < got.size(); ++i) {
+        const double exact = std::atan2(double(r.y[i]), double(r.x[i]));
+        const double err = std::fabs(double(got[i]) - exact) / exact;
+        worst = std::isnan(err) ? std::numeric_limits<double>::infinity() : std::max(worst, err);
+    }
+    return worst;
+}
+}  // namespace
+
+TEST(Atan2Upper, RelativeErrorWithinItsBoundInEveryOctant) {
+    // y >= 0, x of either sign, both over 2^-20..2^20 so that every octant
+    // of the upper half-plane and quotients from 2^-40 to 1 occur, and pairs
+    // near the diagonal |x| = y, where the octant switches.
+    std::mt19937 gen(7);
+    std::uniform_real_distribution<float> mant(1.0f, 2.0f), near(0.999f, 1.001f);
+    std::uniform_int_distribution<int> expo(-20, 20);
+    std::vector<float> y, x;
+    for (int i = 0; i < 1 << 18; ++i) {
+        const float a = std::ldexp(mant(gen), expo(gen)), b = std::ldexp(mant(gen), expo(gen));
+        const float sign = (i & 1) ? -1.0f : 1.0f;
+        y.push_back(a);
+        x.push_back(sign * ((i & 2) ? b : a * near(gen)));
+    }
+    const Atan2Results r = run_atan2_upper(y, x);
+    // The bound, u = 2^-24, first order: the quotient r = min/max, 2.5 ulp in
+    // OpenCL (5u), carried at most 1:1 to atan(r) (r atan'(r)/atan(r) <= 1);
+    // Horner with fused multiply-adds, gamma(8) sum|c_i| / P(1) <= 2.2 gamma(8)
+    // (sum|c_i| = 1.72, P >= pi/4); s = r^2 rounded, |P'| s u / P <= 0.44u; the
+    // product r P, u; pi/2 - a and pi - a, 3u each (a rounded pi, the
+    // subtraction, the error of a over a result at least as large); the
+    // Chebyshev fit's own 1.78e-8 over P >= pi/4. About 30u + 2.3e-8.
+    const double u = std::ldexp(1.0, -24);
+    const double bound = 32.0 * u + 2.3e-8;
+    const double worst = worst_relative_error(r, r.out);
+    EXPECT_LE(worst, bound);
+    std::printf("atan2_upper: worst relative error %.3g (%.2f u), bound %.3g\n", worst, worst / u, bound);
+}
+
+TEST(Atan2Upper, ControlAtanOfTheQuotientIsRejected) {
+    // The same check rejects atan(y/x), which is wrong for x < 0.
+    const Atan2Results r = run_atan2_upper({1.0f, 0.5f, 3.0f, 2.0f}, {2.0f, -1.0f, 0.25f, -7.0f});
+    EXPECT_LE(worst_relative_error(r, r.out), 32.0 * std::ldexp(1.0, -24) + 2.3e-8);
+    EXPECT_GT(worst_relative_error(r, r.naive), 1.0);
+}
+
+TEST(Atan2Upper, AxesZerosAndNaN) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const Atan2Results r = run_atan2_upper({0.0f, 0.0f, 2.0f, 0.0f, 0.0f, nan, 1.0f, 3.0f},
+                                           {1.0f, -1.0f, 0.0f, 0.0f, -0.0f, 1.0f, nan, 3.0f});
+    EXPECT_EQ(r.out[0], 0.0f);
+    EXPECT_FLOAT_EQ(r.out[1], float(kPi));
+    EXPECT_FLOAT_EQ(r.out[2], float(kPi / 2));
+    EXPECT_EQ(r.out[3], 0.0f);  // atan2(0, 0): 0
+    EXPECT_EQ(r.out[4], 0.0f);  // atan2(0, -0): 0 here, where C gives pi (sampling.cl)
+    EXPECT_TRUE(std::isnan(r.out[5]));
+    EXPECT_TRUE(std::isnan(r.out[6]));
+    EXPECT_FLOAT_EQ(r.out[7], float(kPi / 4));
 }
