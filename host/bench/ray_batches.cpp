@@ -168,21 +168,6 @@ void finish_timing(BatchResult& b) {
     b.mrays_per_s = b.mean_ms > 0 ? double(b.rays) / (b.mean_ms * 1e-3) * 1e-6 : 0;
 }
 
-// Median and quartiles of the launch pairs' ratios, interpolated between order statistics.
-void finish_ab(AbResult& ab) {
-    std::vector<double> r = ab.ratios;
-    std::sort(r.begin(), r.end());
-    auto at = [&](double q) {
-        const double x = q * double(r.size() - 1);
-        const auto i = std::size_t(x);
-        return i + 1 < r.size() ? r[i] + (x - double(i)) * (r[i + 1] - r[i]) : r[i];
-    };
-    ab.median = at(0.5);
-    ab.q1 = at(0.25);
-    ab.q3 = at(0.75);
-    ab.ran = true;
-}
-
 // How many of the variant's answers (in out) differ, bit for bit, from the built-in kernels' (a).
 template <class T>
 std::size_t count_differing(Context& ctx, const Buffer& out, const std::vector<T>& a) {
@@ -273,7 +258,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
                     {"secondary rays", n * sizeof(BatchRay)},
                     {"secondary hits", n * sizeof(Hit)},
                     {"hit list", n * sizeof(std::uint32_t)},
-                    {"the variant's answers", o.ab() ? n * sizeof(Hit) : 0}});
+                    {"the variant's answers", !o.ab.empty() ? n * sizeof(Hit) : 0}});
     Buffer nodes = ctx.buffer(node_bytes.size(), CL_MEM_READ_ONLY, "acceleration nodes", node_bytes.data());
     Buffer tris = ctx.buffer(structure.triangles.size() * sizeof(TriVerts), CL_MEM_READ_ONLY, "triangles",
                              structure.triangles.data());
@@ -285,7 +270,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     Buffer src = ctx.buffer(n * sizeof(std::uint32_t), CL_MEM_READ_WRITE, "hit list");
     // Hit is the larger answer: any-hit kernels write one int per ray.
     Buffer variant_out;
-    if (o.ab()) variant_out = ctx.buffer(n * sizeof(Hit), CL_MEM_READ_WRITE, "the variant's answers");
+    if (!o.ab.empty()) variant_out = ctx.buffer(n * sizeof(Hit), CL_MEM_READ_WRITE, "the variant's answers");
 
     const std::string source = program_source(ray_batch_kernel_files()), options = ray_batch_build_options(o.accel);
     BuildResult built = build_program(ctx, source, options);
@@ -300,12 +285,11 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
 
     if (o.on_structure) o.on_structure(source, options, node_bytes, structure.triangles);
 
-    // The variant: the same root files and options, some files replaced (ab_kernels), options added (ab_options).
+    // The variant: the same root files and options, some files replaced, options added (o.ab).
     std::optional<BuildResult> variant;
     std::optional<Kernel> closest_v, any_v;
-    if (o.ab()) {
-        variant = build_program(ctx, program_source_replacing(ray_batch_kernel_files(), o.ab_kernels),
-                                o.ab_options.empty() ? options : options + " " + o.ab_options);
+    if (!o.ab.empty()) {
+        variant = build_program(ctx, variant_source(ray_batch_kernel_files(), o.ab), variant_options(options, o.ab));
         closest_v.emplace(ctx.kernel(variant->program.get(), "batch_trace_closest"));
         any_v.emplace(ctx.kernel(variant->program.get(), "batch_trace_any"));
         say(std::string("variant kernels ") + (variant->from_cache ? "loaded from cache" : "compiled") + " in " +
@@ -446,11 +430,7 @@ std::string describe_embree(const BatchResult& b) {
 
 std::string describe_ab(const BatchResult& b) {
     if (!b.ab.ran) return "";
-    char buf[256];
-    std::snprintf(buf, sizeof buf,
-                  "  A/B: variant/built-in %.3f (quartiles %.3f-%.3f) over %zu launch pairs; answers differ for %zu rays",
-                  b.ab.median, b.ab.q1, b.ab.q3, b.ab.ratios.size(), b.ab.differing);
-    return buf;
+    return "  A/B: " + describe_ab_ratios(b.ab) + "; answers differ for " + std::to_string(b.ab.differing) + " rays";
 }
 
 }  // namespace clpath

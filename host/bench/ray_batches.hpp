@@ -17,9 +17,11 @@
 
 #include <glm/glm.hpp>
 
+#include "bench/ab_ratios.hpp"
 #include "bench/ray_files.hpp"
 #include "bvh/accel.hpp"
 #include "cl/context.hpp"
+#include "cl/embedded_sources.hpp"
 #include "cl/kernel_info.hpp"
 #include "scene/scene.hpp"
 
@@ -35,15 +37,12 @@ struct RayBenchOptions {
     std::uint32_t seed = 0;                    // diffuse directions
     BvhBuildOptions bvh;
     bool embree = true;  // trace every batch with Embree too, when built with it (bench/embree_baseline.hpp)
-    // A variant of the kernels to time against the built-in ones: kernel
-    // files (name, text), each replacing the built-in file of that name, and
-    // build options added to the built-in ones. Each batch's launches then
+    // A variant of the kernels to time against the built-in ones (kernel
+    // files replacing built-in ones, build options added). Each batch's launches then
     // alternate between the two programs, which goes first alternating too,
     // so that a drift in the machine's speed weighs on both alike
-    // (BatchResult::ab). Both empty: off.
-    std::vector<std::pair<std::string, std::string>> ab_kernels;
-    std::string ab_options;
-    bool ab() const { return !ab_kernels.empty() || !ab_options.empty(); }
+    // (BatchResult::ab). Empty: off.
+    KernelVariant ab;
     // Hears each batch's rays and the device's answers once it is traced (for
     // --save-rays: bench/ray_files.hpp); empty batches too. May be empty.
     std::function<void(RayBatchKind, const std::vector<BatchRay>&, const std::vector<float>& result)> on_traced;
@@ -91,14 +90,6 @@ struct EmbreeBatch {
     double best_ms = 0, mean_ms = 0;
     double mrays_per_s = 0;
     BatchAgreement agreement;
-};
-
-// The variant's launches against the built-in kernels' (RayBenchOptions::ab_kernels, ab_options).
-struct AbResult {
-    bool ran = false;
-    std::vector<double> ratios;        // per launch pair: built-in time / variant time (> 1: the variant is faster)
-    double median = 0, q1 = 0, q3 = 0;  // of ratios
-    std::size_t differing = 0;         // rays whose answer differs, bit for bit, from the built-in kernels'
 };
 
 struct BatchResult {

@@ -87,6 +87,14 @@ std::string program_source_replacing(const std::vector<std::string>& roots,
     return assemble(std::move(files), roots);
 }
 
+std::string variant_source(const std::vector<std::string>& roots, const KernelVariant& variant) {
+    return program_source_replacing(roots, variant.files);
+}
+
+std::string variant_options(const std::string& options, const KernelVariant& variant) {
+    return variant.options.empty() ? options : options + " " + variant.options;
+}
+
 const std::vector<std::string>& renderer_kernel_files() {
     static const std::vector<std::string> files = {"integrator.cl"};
     return files;

@@ -38,6 +38,20 @@ std::string program_source(const std::vector<std::string>& roots, const SourceTa
 std::string program_source_replacing(const std::vector<std::string>& roots,
                                      const std::vector<std::pair<std::string, std::string>>& replacements);
 
+// A variant of the kernels, to be timed against the built-in ones (bench rays
+// and bench render-ab): kernel files replacing embedded ones of the same
+// names, and build options added to those the program is built with.
+struct KernelVariant {
+    std::vector<std::pair<std::string, std::string>> files;  // (file name, text)
+    std::string options;
+    bool empty() const { return files.empty() && options.empty(); }
+};
+
+// The variant's program source and build options, from the built-in
+// program's roots and options.
+std::string variant_source(const std::vector<std::string>& roots, const KernelVariant& variant);
+std::string variant_options(const std::string& options, const KernelVariant& variant);
+
 // The renderer's root kernel files.
 const std::vector<std::string>& renderer_kernel_files();
 

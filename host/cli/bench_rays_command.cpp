@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -15,6 +14,7 @@
 #include "bench/report_files.hpp"
 #include "cl/context.hpp"
 #include "cli/commands.hpp"
+#include "cli/kernel_variant_option.hpp"
 #include "cli/option_checks.hpp"
 #include "scene/scene_loader.hpp"
 #include "shared_structs.h"
@@ -49,27 +49,6 @@ std::vector<float> parse_numbers(const std::string& text, const std::string& wha
     return v;
 }
 
-// The kernel files (*.cl, *.h) in dir, by file name, for --ab-kernels.
-std::vector<std::pair<std::string, std::string>> read_kernel_folder(const std::string& dir) {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) throw Error("--ab-kernels " + dir + ": no such folder");
-    std::vector<std::pair<std::string, std::string>> files;
-    for (const auto& e : fs::directory_iterator(dir, ec)) {
-        const std::string ext = e.path().extension().string();
-        if (!e.is_regular_file() || (ext != ".cl" && ext != ".h")) continue;
-        std::ifstream in(e.path(), std::ios::binary);
-        std::ostringstream text;
-        text << in.rdbuf();
-        if (!in) throw Error("--ab-kernels: cannot read " + e.path().string());
-        files.emplace_back(e.path().filename().string(), text.str());
-    }
-    if (ec) throw Error("--ab-kernels " + dir + ": " + ec.message());
-    if (files.empty()) throw Error("--ab-kernels " + dir + ": no kernel files (*.cl, *.h) in it");
-    std::sort(files.begin(), files.end());
-    return files;
-}
-
 int run_rays(const RaysOptions& o) {
     RayBenchOptions bo;
     bo.width = o.quick ? 32 : o.width;
@@ -87,8 +66,7 @@ int run_rays(const RaysOptions& o) {
     }
     if (!o.csv.empty()) check_report_path(o.csv, "--csv");
     if (!o.save_rays.empty()) check_ray_folder(o.save_rays, "--save-rays");
-    if (!o.ab_kernels.empty()) bo.ab_kernels = read_kernel_folder(o.ab_kernels);
-    bo.ab_options = o.ab_options;
+    bo.ab = read_kernel_variant(o.ab_kernels, o.ab_options);
 
     Scene scene = load_scene(o.scene);
     for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());

@@ -22,5 +22,6 @@ Command add_bench_rays_command(CLI::App& bench);
 Command add_bench_convergence_command(CLI::App& bench);
 Command add_bench_build_command(CLI::App& bench);
 Command add_bench_path_command(CLI::App& bench);
+Command add_bench_render_ab_command(CLI::App& bench);
 
 }  // namespace clpath

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 
 #include "cl/embedded_sources.hpp"
 #include "util/error.hpp"
@@ -22,8 +23,9 @@ std::uint32_t tiled_pixel_count(const Film& film) {
 
 }  // namespace
 
-IntegratorProgram::IntegratorProgram(Context& ctx, const SceneSummary& scene, const RenderSettings& settings)
-    : ctx_(ctx), scene_features_(scene.features), settings_(settings) {
+IntegratorProgram::IntegratorProgram(Context& ctx, const SceneSummary& scene, const RenderSettings& settings,
+                                     KernelVariant variant)
+    : ctx_(ctx), scene_features_(scene.features), settings_(settings), variant_(std::move(variant)) {
     validate_settings(settings);
     if (settings.accel != scene.accel)
         throw Error(std::string("internal: scene '") + scene.name + "' was prepared with the " +
@@ -35,7 +37,8 @@ IntegratorProgram::IntegratorProgram(Context& ctx, const SceneSummary& scene, co
 }
 
 void IntegratorProgram::compile() {
-    BuildResult built = build_program(ctx_, program_source(renderer_kernel_files()), build_options(features_));
+    BuildResult built = build_program(ctx_, variant_source(renderer_kernel_files(), variant_),
+                                      variant_options(build_options(features_), variant_));
     render_ = Kernel();
     resolve_ = Kernel();
     program_ = std::move(built.program);

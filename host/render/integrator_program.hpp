@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "cl/context.hpp"
+#include "cl/embedded_sources.hpp"
 #include "cl/program.hpp"
 #include "render/device_scene.hpp"
 #include "render/film.hpp"
@@ -34,7 +35,9 @@ public:
     // Compiles (or loads from the cache) the kernels for this scene under these
     // settings, whose acceleration structure must be the scene's. Throws
     // clpath::Error for invalid settings or a failed build.
-    IntegratorProgram(Context& ctx, const SceneSummary& scene, const RenderSettings& settings);
+    // A variant (bench render-ab) replaces kernel files and adds build options.
+    IntegratorProgram(Context& ctx, const SceneSummary& scene, const RenderSettings& settings,
+                      KernelVariant variant = {});
 
     // New settings: the kernels are rebuilt (or loaded from the cache) when the
     // features they need change, e.g. another integrator; the launch timing is
@@ -65,6 +68,7 @@ private:
     SceneFeatures scene_features_;
     RenderSettings settings_;
     KernelFeatures features_;
+    KernelVariant variant_;
     Buffer params_, counters_;
     Program program_;
     Kernel render_, resolve_;

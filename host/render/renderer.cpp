@@ -1,5 +1,7 @@
 #include "render/renderer.hpp"
 
+#include <utility>
+
 #include "util/error.hpp"
 
 namespace clpath {
@@ -19,6 +21,9 @@ Renderer::Renderer(Context& ctx, const Scene& scene, const RenderSettings& setti
     : Renderer(ctx, *prepare_scene(checked(scene, settings), settings), settings) {}
 
 Renderer::Renderer(Context& ctx, const PreparedScene& scene, const RenderSettings& settings)
+    : Renderer(ctx, scene, settings, KernelVariant{}) {}
+
+Renderer::Renderer(Context& ctx, const PreparedScene& scene, const RenderSettings& settings, KernelVariant variant)
     : ctx_(ctx), camera_(scene.camera) {
     validate_settings(settings);
     camera_data(camera_);
@@ -28,7 +33,7 @@ Renderer::Renderer(Context& ctx, const PreparedScene& scene, const RenderSetting
     ctx.check_fits(needs);
     scene_ = std::make_unique<DeviceScene>(ctx, scene);
     film_ = std::make_unique<Film>(ctx, camera_.width, camera_.height);
-    program_ = std::make_unique<IntegratorProgram>(ctx, scene.summary, settings);
+    program_ = std::make_unique<IntegratorProgram>(ctx, scene.summary, settings, std::move(variant));
     if (scene.summary.accel == Accel::Bvh) bvh_nodes_ = scene.accel.nodes;  // the flat list is no tree to draw
 }
 

@@ -35,6 +35,8 @@ public:
     // The same from a scene already prepared (with the same settings.accel),
     // which may be uploaded to other devices too; it is not kept.
     Renderer(Context& ctx, const PreparedScene& scene, const RenderSettings& settings);
+    // The same with a variant of the kernels (bench render-ab).
+    Renderer(Context& ctx, const PreparedScene& scene, const RenderSettings& settings, KernelVariant variant);
 
     // Adds n samples per pixel (in as many launches as the time target asks).
     void add_samples(std::uint32_t n);

@@ -2,7 +2,7 @@
 // source and options, the node and triangle buffers; host/bench/ray_files.hpp)
 // must be all a harness needs to run clpath's own kernels in its process:
 // rebuilt from those alone, the kernels give back the very answers clpath
-// saved for the same rays. And a variant of the kernels (ab_kernels) is timed
+// saved for the same rays. And a variant of the kernels (RayBenchOptions::ab) is timed
 // launch by launch against the built-in ones, its answers compared bitwise.
 #include <gtest/gtest.h>
 
@@ -94,8 +94,8 @@ RayBenchResult run_variant(const std::vector<std::pair<std::string, std::string>
     const Scene scene = load_scene("cornell");
     RayBenchOptions o;
     o.width = 32, o.height = 24, o.launches = 3, o.embree = false;
-    o.ab_kernels = files;
-    o.ab_options = options;
+    o.ab.files = files;
+    o.ab.options = options;
     return run_ray_bench(test::device(), scene, o);
 }
 
@@ -134,7 +134,7 @@ TEST(RayBatchVariant, ControlAVariantThatNeverHitsDiffers) {
     EXPECT_EQ(primary.agreement.mismatched, 0u);  // the built-in kernels' answers are still the ones checked
 }
 
-// ab_options reach the variant's program, and only it: a define that stops
+// The variant's options reach its program, and only it: a define that stops
 // the variant's triangle test makes it differ on every hit; without it, or
 // given to nothing but the built-in kernels' text, nothing differs.
 TEST(RayBatchVariant, OptionsReachTheVariant) {

@@ -1,5 +1,5 @@
-# clpath bench rays (its Embree baseline and the kernels' work-group facts) and
-# clpath bench build from the command line. Included from tests/CMakeLists.txt
+# clpath bench rays (its Embree baseline and the kernels' work-group facts),
+# clpath bench build and bench render-ab from the command line. Included from tests/CMakeLists.txt
 # after cli/cli_tests.cmake (it uses clpath_cli_test, clpath_bench_quick_test,
 # RAYS_HEADER and CLI_OUT from there).
 
@@ -43,3 +43,10 @@ clpath_cli_test(bench_rays_ab_kernels_no_kernel_files FAIL ARGS bench rays corne
                 --ab-kernels ${CMAKE_SOURCE_DIR}/tests/cli/data OUTPUT "--ab-kernels .*data: no kernel files")
 clpath_cli_test(bench_rays_ab_options ARGS bench rays cornell --quick --no-embree --ab-options=-DCLP_UNREAD_DEFINE
                 OUTPUT "primary: [0-9]+ rays .*\n  A/B: variant/built-in [0-9.]+ \\(quartiles [0-9.]+-[0-9.]+\\) over 1 launch pairs; answers differ for 0 rays")
+
+# bench render-ab: the renderer's kernels against a variant (an unchanged copy: the same image).
+clpath_cli_test(bench_render_ab ARGS bench render-ab cornell --width 32 --height 24 --spp 2 --ab-kernels ${CLI_OUT}/ab-kernels
+                OUTPUT "A/B: variant/built-in [0-9.]+ \\(quartiles [0-9.]+-[0-9.]+\\) over 2 launch pairs; built-in [0-9.]+ Msamples/s, variant [0-9.]+; images differ in 0 of 768 pixels")
+clpath_cli_test(bench_render_ab_no_variant FAIL ARGS bench render-ab cornell --spp 1 OUTPUT "give the variant")
+clpath_cli_test(bench_render_ab_missing_folder FAIL ARGS bench render-ab cornell --spp 1 --ab-kernels ${CLI_OUT}/no-such-kernels
+                OUTPUT "--ab-kernels .*no-such-kernels: no such folder")
