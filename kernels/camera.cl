@@ -17,7 +17,7 @@ inline Ray camera_ray(constant const CameraData* cam, uint px, uint py, float jx
     float y = 1.0f - 2.0f * ((float)py + jy) / (float)cam->height;
     Ray r;
     r.o = load3c(cam->eye);
-    r.d = normalize(load3c(cam->forward) + x * load3c(cam->right) + y * load3c(cam->up));
+    r.d = normalize3(load3c(cam->forward) + x * load3c(cam->right) + y * load3c(cam->up));
     return r;
 }
 

@@ -95,7 +95,7 @@ inline Surface surface_at(const SceneData* sc, const Hit* h, float3 d) {
     Surface s;
     s.tv = &sc->tris[h->tri];
     float3 v0 = load3g(s.tv->v0), v1 = load3g(s.tv->v1), v2 = load3g(s.tv->v2);
-    s.ng = normalize(cross(v1 - v0, v2 - v0));
+    s.ng = normalize3(cross(v1 - v0, v2 - v0));
     s.front = dot(s.ng, d) < 0.0f;
     s.p = hit_point(v0, v1, v2, h->b1, h->b2, &s.err);
     uint mi = sc->tri_material[s.tv->prim];
@@ -105,7 +105,7 @@ inline Surface surface_at(const SceneData* sc, const Hit* h, float3 d) {
     if (sc->fp->scene_flags & CLP_SCENE_NORMALS) {
     global const float* n = sc->normals + 9 * (size_t)s.tv->prim;
     float3 ns = (1.0f - h->b1 - h->b2) * vload3(0, n) + h->b1 * vload3(1, n) + h->b2 * vload3(2, n);
-    float len = length(ns);
+    float len = length3(ns);
     if (len > 0.0f && isfinite(len)) s.ns = ns / len;
     }
 #endif

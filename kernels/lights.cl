@@ -149,7 +149,7 @@ inline float triangle_solid_angle_dirs(float3 a, float3 b, float3 c, float3 n, f
     float3 da = a - p, db = b - p, dc = c - p;
     float d2 = fmin(dot(da, da), fmin(dot(db, db), dot(dc, dc)));
     if (!(0.5f * area2 >= CLP_MIN_SPHERICAL_SPREAD * d2)) return 0.0f;
-    float la = length(da), lb = length(db), lc = length(dc);
+    float la = length3(da), lb = length3(db), lc = length3(dc);
     if (!(la > 0.0f && lb > 0.0f && lc > 0.0f)) return 0.0f;
     if (!(fabs(dot(n, da)) >= CLP_MIN_SPHERICAL_ELEVATION * fmin(la, fmin(lb, lc)))) return 0.0f;
     *ua = da / la;
@@ -162,7 +162,7 @@ inline float triangle_solid_angle_dirs(float3 a, float3 b, float3 c, float3 n, f
 /* The same, for the pdf of a direction (MIS). */
 inline float triangle_sampled_solid_angle(float3 a, float3 b, float3 c, float3 p) {
     float3 ua, ub, uc, n = cross(b - a, c - a);
-    return triangle_solid_angle_dirs(a, b, c, normalize(n), length(n), p, &ua, &ub, &uc);
+    return triangle_solid_angle_dirs(a, b, c, normalize3(n), length3(n), p, &ua, &ub, &uc);
 }
 
 /* Solid-angle pdf (without the pick) of sampling, from p, the point at
@@ -172,7 +172,7 @@ inline float triangle_sample_pdf(global const Light* l, float3 p, float3 d, floa
     float omega = triangle_sampled_solid_angle(a, b, c, p);
     if (omega > 0.0f) return 1.0f / omega;
     float3 n = cross(b - a, c - a);
-    float area2 = length(n);
+    float area2 = length3(n);
     float cos_l = fabs(dot(n, d)) / area2;
     if (!(cos_l > 0.0f)) return 0.0f;
     return dist * dist / (0.5f * area2 * cos_l);
@@ -191,11 +191,11 @@ inline float triangle_light_pdf(global const Light* lights, global const AliasEn
 inline int sample_triangle_light(global const Light* l, float3 p, float u1, float u2, LightSample* s) {
     float3 a = load3g(l->a), b = load3g(l->b), c = load3g(l->c);
     float3 n = cross(b - a, c - a);
-    float area2 = length(n);
+    float area2 = length3(n);
     if (!(area2 > 0.0f)) return 0;
     float b0, b1;
     float3 ua, ub, uc;
-    float omega = triangle_solid_angle_dirs(a, b, c, normalize(n), area2, p, &ua, &ub, &uc);
+    float omega = triangle_solid_angle_dirs(a, b, c, normalize3(n), area2, p, &ua, &ub, &uc);
     if (omega > 0.0f) {
         float3 w = sample_spherical_triangle(ua, ub, uc, omega, u1, u2);
         /* Where w meets the triangle's plane, as barycentrics clamped into the

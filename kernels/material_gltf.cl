@@ -59,7 +59,7 @@ float3 gltf_eval(CLP_MAT_SPACE const Material* m, float3 wo, float3 wi, float* p
     float3 base = CLP_M3(m->albedo);
     float metal = clamp(m->metallic, 0.0f, 1.0f);
     float f0 = gltf_f0(m);
-    float3 h = normalize(wo + wi);
+    float3 h = normalize3(wo + wi);
     float wo_h = dot(wo, h);
     /* Specular: D G2 / (4 cos_o cos_i), times cos_i. */
     float spec = ggx_d(h, alpha) * ggx_g2(wo, wi, alpha) / (4.0f * wo.z);

@@ -110,7 +110,7 @@ inline float ggx_g2(float3 wo, float3 wi, float alpha) {
 
 /* Normal visible from wo (wo.z > 0), distributed as D_wo(h) = G1(wo) max(0, wo.h) D(h) / wo.z. */
 inline float3 ggx_sample_visible_normal(float3 wo, float alpha, float u1, float u2) {
-    float3 vh = normalize((float3)(alpha * wo.x, alpha * wo.y, wo.z));
+    float3 vh = normalize3((float3)(alpha * wo.x, alpha * wo.y, wo.z));
     float len2 = vh.x * vh.x + vh.y * vh.y;
     float3 t1 = len2 > 0.0f ? (float3)(-vh.y, vh.x, 0.0f) * rsqrt(len2) : (float3)(1.0f, 0.0f, 0.0f);
     float3 t2 = cross(vh, t1);
@@ -119,7 +119,7 @@ inline float3 ggx_sample_visible_normal(float3 wo, float alpha, float u1, float 
     float s = 0.5f * (1.0f + vh.z);
     p2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - p1 * p1)) + s * p2;
     float3 nh = p1 * t1 + p2 * t2 + sqrt(fmax(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
-    return normalize((float3)(alpha * nh.x, alpha * nh.y, fmax(1e-6f, nh.z)));
+    return normalize3((float3)(alpha * nh.x, alpha * nh.y, fmax(1e-6f, nh.z)));
 }
 
 /* pdf of wi = reflect(wo, h) when h is a visible normal. */
@@ -143,7 +143,7 @@ inline float rough_dielectric_eval(float3 wo, float3 wi, float alpha, float eta,
     int reflect = wi.z > 0.0f;
     float3 h = reflect ? wo + wi : wo + eta * wi;
     if (!(dot(h, h) > 0.0f)) return 0.0f;
-    h = normalize(h);
+    h = normalize3(h);
     if (h.z < 0.0f) h = -h;
     float wo_h = dot(wo, h), wi_h = dot(wi, h);
     /* Back-facing microfacets: wo must see h, and wi must be on h's side for
@@ -177,7 +177,7 @@ inline int rough_dielectric_sample(float3 wo, float alpha, float eta, float u1, 
         /* Snell's law about h (F < 1 here, so no total internal reflection). */
         float sin2_t = (1.0f - wo_h * wo_h) / (eta * eta);
         float cos_t = sqrt(fmax(0.0f, 1.0f - sin2_t));
-        *wi = normalize(-wo / eta + (wo_h / eta - cos_t) * h);
+        *wi = normalize3(-wo / eta + (wo_h / eta - cos_t) * h);
         if (wi->z >= 0.0f) return 0;
     }
     float f = rough_dielectric_eval(wo, *wi, alpha, eta, pdf);
@@ -254,7 +254,7 @@ inline float3 material_eval(CLP_MAT_SPACE const Material* m, float3 ng, float3 n
     case CLP_MAT_CONDUCTOR: {
         float alpha = ggx_alpha(m);
         if (alpha < CLP_SMOOTH_ALPHA) return (float3)(0.0f);
-        float3 h = normalize(wo + wi);
+        float3 h = normalize3(wo + wi);
         *pdf = ggx_reflection_pdf(wo, h, alpha);
         float3 F = schlick_fresnel(CLP_M3(m->albedo), dot(wo, h));
         return F * (ggx_d(h, alpha) * ggx_g2(wo, wi, alpha) / (4.0f * wo.z));
@@ -353,7 +353,7 @@ inline int material_sample(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns
             float sin2_t = (1.0f - cos_o * cos_o) / (eta * eta);
             float cos_t = sqrt(fmax(0.0f, 1.0f - sin2_t));
             float3 wi = (float3)(-wo.x / eta, -wo.y / eta, outside ? -cos_t : cos_t);
-            s->wi = from_local(&f, normalize(wi));
+            s->wi = from_local(&f, normalize3(wi));
             /* Radiance is compressed into the denser medium: scale by 1/eta^2
              * (PBR 4th ed., 9.5.2). The tint colours transmitted light only. */
             s->weight = CLP_M3(m->albedo) / (eta * eta);

@@ -39,7 +39,7 @@ kernel void batch_primary_rays(constant const CameraData* cam, global BatchRay* 
 inline float3 batch_hit_point(global const TriVerts* tris, const BatchRay* r, Hit h, float3* err, float3* n) {
     global const TriVerts* tv = &tris[h.tri];
     float3 v0 = load3g(tv->v0), v1 = load3g(tv->v1), v2 = load3g(tv->v2);
-    float3 ng = normalize(cross(v1 - v0, v2 - v0));
+    float3 ng = normalize3(cross(v1 - v0, v2 - v0));
     *n = dot(ng, load3(r->d)) < 0.0f ? ng : -ng;
     return hit_point(v0, v1, v2, h.b1, h.b2, err);
 }

@@ -121,7 +121,7 @@ inline float spherical_triangle_area(float3 a, float3 b, float3 c) {
  * where v is parallel to n (then nothing is added to the component along n). */
 inline float3 orthogonal_part(float3 v, float3 n) {
     float3 w = v - dot(v, n) * n;
-    float l = length(w);
+    float l = length3(w);
     return l > 0.0f ? w / l : (float3)(0.0f);
 }
 
@@ -131,7 +131,7 @@ inline float3 orthogonal_part(float3 v, float3 n) {
  * (a, b, c') of area u1 * area, u2 the point along the arc from b to c'. */
 inline float3 sample_spherical_triangle(float3 a, float3 b, float3 c, float area, float u1, float u2) {
     /* alpha: the triangle's angle at a, between the great circles ab and ac. */
-    float cos_alpha = clamp(dot(normalize(cross(a, b)), normalize(cross(a, c))), -1.0f, 1.0f);
+    float cos_alpha = clamp(dot(normalize3(cross(a, b)), normalize3(cross(a, c))), -1.0f, 1.0f);
     float sin_alpha = sqrt(fmax(0.0f, 1.0f - cos_alpha * cos_alpha));
     float a_hat = u1 * area;
     /* s, t = sin, cos of (a_hat - alpha) by the angle-difference identities,

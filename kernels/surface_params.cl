@@ -42,12 +42,12 @@ inline float3 normal_mapped(const SurfaceData* sd, global const MaterialExt* gm,
     tn.y *= gm->normal_scale;
     float4 t = surface_tangent(sd, tv, b1, b2);
     float3 T = t.xyz - ns * dot(ns, t.xyz);
-    float len = length(T);
+    float len = length3(T);
     if (!(len > 0.0f) || !isfinite(len)) return ns;
     T /= len;
     float3 B = cross(ns, T) * t.w;
     float3 n = T * tn.x + B * tn.y + ns * tn.z;
-    float nl = length(n);
+    float nl = length3(n);
     return nl > 0.0f && isfinite(nl) ? n / nl : ns;
 }
 #endif

@@ -81,6 +81,20 @@ kernel void probe_cosine(global float* out, uint count, uint seed) {
     out[3 * i + 2] = d.z;
 }
 
+/* length3 and normalize3 (common.h) of v[i] beside the builtins, and, as the
+ * control's wrong answer, sqrt(dot(v, v)) with no fallback. */
+kernel void probe_length3(global const float* v, global float* len, global float* len_builtin, global float* unit,
+                          global float* unit_builtin, global float* unguarded, uint count) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    float3 x = load3g(v + 3 * i);
+    len[i] = length3(x);
+    len_builtin[i] = length(x);
+    vstore3(normalize3(x), i, unit);
+    vstore3(normalize(x), i, unit_builtin);
+    unguarded[i] = sqrt(dot(x, x));
+}
+
 /* atan2_upper(y[i], x[i]) (sampling.cl) and, as the control's wrong answer,
  * atan(y/x) without the quadrant rule. */
 kernel void probe_atan2_upper(global const float* y, global const float* x, global float* out,
