@@ -19,6 +19,7 @@ struct RenderAbCliOptions {
     std::string scene, device, ab_kernels, ab_options;
     std::uint32_t spp = 16, seed = 0;
     int width = 0, height = 0;
+    bool quick = false;
 };
 
 int run_render_ab_command(const RenderAbCliOptions& o) {
@@ -32,6 +33,11 @@ int run_render_ab_command(const RenderAbCliOptions& o) {
     for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
     if (o.width) scene.camera.width = o.width;
     if (o.height) scene.camera.height = o.height;
+    if (o.quick) {
+        scene.camera.width = 32;
+        scene.camera.height = 24;
+        ro.spp = 2;
+    }
     const DeviceInfo device = select_device(o.device);
     Context ctx(device);
     std::fprintf(stderr, "clpath: bench render-ab '%s' (%zu triangles) at %dx%d, %u launch pairs of 1 spp\n",
@@ -67,6 +73,7 @@ Command add_bench_render_ab_command(CLI::App& bench) {
     cmd->add_option("--height", o->height, "Image height (default: the scene's)")->check(whole_number(1, 16384));
     cmd->add_option("--seed", o->seed, "Seed of both renders")->check(whole_number(0, 4294967294u))->capture_default_str();
     cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
+    cmd->add_flag("--quick", o->quick, "32x24 pixels, 2 launch pairs (for CI)");
     return [o] { return run_render_ab_command(*o); };
 }
 

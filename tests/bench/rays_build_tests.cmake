@@ -45,7 +45,7 @@ clpath_cli_test(bench_rays_ab_options ARGS bench rays cornell --quick --no-embre
                 OUTPUT "primary: [0-9]+ rays .*\n  A/B: variant/built-in [0-9.]+ \\(quartiles [0-9.]+-[0-9.]+\\) over 1 launch pairs; answers differ for 0 rays")
 
 # bench render-ab: the renderer's kernels against a variant (an unchanged copy: the same image).
-clpath_cli_test(bench_render_ab ARGS bench render-ab cornell --width 32 --height 24 --spp 2 --ab-kernels ${CLI_OUT}/ab-kernels
+clpath_cli_test(bench_render_ab ARGS bench render-ab cornell --quick --ab-kernels ${CLI_OUT}/ab-kernels
                 OUTPUT "A/B: variant/built-in [0-9.]+ \\(quartiles [0-9.]+-[0-9.]+\\) over 2 launch pairs; built-in [0-9.]+ Msamples/s, variant [0-9.]+; images differ in 0 of 768 pixels")
 clpath_cli_test(bench_render_ab_no_variant FAIL ARGS bench render-ab cornell --spp 1 OUTPUT "give the variant")
 clpath_cli_test(bench_render_ab_missing_folder FAIL ARGS bench render-ab cornell --spp 1 --ab-kernels ${CLI_OUT}/no-such-kernels
