@@ -76,19 +76,14 @@ std::string program_source(const std::vector<std::string>& roots, const SourceTa
     return assemble(std::move(files), roots);
 }
 
-std::string program_source_replacing(const std::vector<std::string>& roots,
-                                     const std::vector<std::pair<std::string, std::string>>& replacements) {
+std::string variant_source(const std::vector<std::string>& roots, const KernelVariant& variant) {
     ByName files = index(embedded_sources());
-    for (const auto& [name, text] : replacements) {
+    for (const auto& [name, text] : variant.files) {
         auto it = files.find(name);
         if (it == files.end()) throw Error(name + " is not one of clpath's kernel files, so it replaces none");
-        it->second = text.c_str();  // replacements outlive the assembly
+        it->second = text.c_str();  // the variant outlives the assembly
     }
     return assemble(std::move(files), roots);
-}
-
-std::string variant_source(const std::vector<std::string>& roots, const KernelVariant& variant) {
-    return program_source_replacing(roots, variant.files);
 }
 
 std::string variant_options(const std::string& options, const KernelVariant& variant) {

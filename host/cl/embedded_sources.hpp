@@ -32,12 +32,6 @@ const std::string& embedded_source(const std::string& name);
 // Throws clpath::Error for a file that is not embedded.
 std::string program_source(const std::vector<std::string>& roots, const SourceTable& extra = {});
 
-// program_source with some embedded files replaced by other texts of the same
-// names (a variant of the kernels, for comparing it with them: bench rays
-// --ab-kernels). Throws clpath::Error naming a file that replaces none.
-std::string program_source_replacing(const std::vector<std::string>& roots,
-                                     const std::vector<std::pair<std::string, std::string>>& replacements);
-
 // A variant of the kernels, to be timed against the built-in ones (bench rays
 // and bench render-ab): kernel files replacing embedded ones of the same
 // names, and build options added to those the program is built with.
@@ -47,8 +41,9 @@ struct KernelVariant {
     bool empty() const { return files.empty() && options.empty(); }
 };
 
-// The variant's program source and build options, from the built-in
-// program's roots and options.
+// The variant's program: program_source with the variant's files in place of
+// the embedded ones of the same names (clpath::Error naming a file that
+// replaces none), and the built-in options with the variant's added.
 std::string variant_source(const std::vector<std::string>& roots, const KernelVariant& variant);
 std::string variant_options(const std::string& options, const KernelVariant& variant);
 

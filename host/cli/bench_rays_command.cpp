@@ -196,14 +196,9 @@ Command add_bench_rays_command(CLI::App& bench) {
                     "Write each batch's rays and clpath's hits to primary.rays, shadow.rays and diffuse.rays in this "
                     "existing folder, with the batch kernels' program, nodes and triangles (format: "
                     "host/bench/ray_files.hpp), for tracing them with another tracer");
-    cmd->add_option("--ab-kernels", o->ab_kernels,
-                    "Also time a variant of the batch kernels: the kernel files in this folder, each replacing "
-                    "clpath's file of that name; launches alternate between the two, and each batch prints the "
-                    "variant's speed over the built-in kernels' (median of the launch pairs, quartiles) and how "
-                    "many answers differ");
-    cmd->add_option("--ab-options", o->ab_options,
-                    "Build options added for the variant's program (alone, or with --ab-kernels), e.g. "
-                    "--ab-options=\"-DNAME -cl-denorms-are-zero\"");
+    add_kernel_variant_options(cmd, &o->ab_kernels, &o->ab_options, "the batch kernels",
+                               "each batch prints the variant's speed over the built-in kernels' (median of the "
+                               "launch pairs, quartiles) and how many answers differ");
     cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
     cmd->add_flag("--quick", o->quick, "32x24 pixels, one timed launch, every ray checked (for CI)");
     cmd->add_flag("--no-embree", o->no_embree,

@@ -63,9 +63,9 @@ Command add_bench_render_ab_command(CLI::App& bench) {
         "one sample per pixel at a time, taking turns; prints the median of the launch pairs' speed ratios with "
         "quartiles, and in how many pixels the two images differ");
     cmd->add_option("scene", o->scene, scene_argument_help())->required();
-    cmd->add_option("--ab-kernels", o->ab_kernels,
-                    "Folder of kernel files (*.cl, *.h), each replacing clpath's file of that name in the variant");
-    cmd->add_option("--ab-options", o->ab_options, "OpenCL build options added to the variant's (write --ab-options=-D...)");
+    add_kernel_variant_options(cmd, &o->ab_kernels, &o->ab_options, "the renderer's kernels",
+                               "the variant's speed over the built-in kernels' and the pixels that differ are "
+                               "printed (one of the two options is needed)");
     cmd->add_option("--spp", o->spp, "Launch pairs (one sample per pixel each)")
         ->check(whole_number(1, 1u << 16))
         ->capture_default_str();

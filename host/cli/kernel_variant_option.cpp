@@ -31,4 +31,14 @@ KernelVariant read_kernel_variant(const std::string& dir, const std::string& opt
     return v;
 }
 
+void add_kernel_variant_options(CLI::App* cmd, std::string* dir, std::string* options, const std::string& kernels,
+                                const std::string& report) {
+    cmd->add_option("--ab-kernels", *dir,
+                    "A variant of " + kernels + " to time against them: the kernel files (*.cl, *.h) in this folder, each "
+                    "replacing clpath's file of that name; launches alternate between the two, and " + report);
+    cmd->add_option("--ab-options", *options,
+                    "Build options added for the variant's program (alone, or with --ab-kernels), e.g. "
+                    "--ab-options=\"-DNAME -cl-denorms-are-zero\"");
+}
+
 }  // namespace clpath

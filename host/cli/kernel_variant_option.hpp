@@ -3,6 +3,8 @@
 // variant of the kernels against the built-in ones (bench rays, bench render-ab).
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "cl/embedded_sources.hpp"
 
 namespace clpath {
@@ -11,5 +13,10 @@ namespace clpath {
 // empty: options only. Throws clpath::Error for a folder that is missing,
 // unreadable or holds no kernel file.
 KernelVariant read_kernel_variant(const std::string& dir, const std::string& options);
+
+// Registers --ab-kernels DIR and --ab-options OPTS on cmd; `kernels` names
+// what the variant replaces, `report` what the command prints of it.
+void add_kernel_variant_options(CLI::App* cmd, std::string* dir, std::string* options, const std::string& kernels,
+                                const std::string& report);
 
 }  // namespace clpath
