@@ -98,7 +98,14 @@ kernel void clp_occluded_cwbvh(global const float4* cwbvhNodes, global const flo
 // tiny_ocl's Kernel builds with these options and puts a vendor define
 // (ISNVIDIA, ISAMD, ISINTEL, ISAPPLE, else ISOTHER) before the source, chosen
 // from the lower-cased device name; traverse.cl picks its variants by it.
-std::string vendor_define(std::string name) {
+// Those are GPU families (tiny_ocl accepts GPUs only): a CPU device gets
+// ISOTHER, whatever its name says. PoCL names an AMD EPYC "...-AMD EPYC", and
+// ISAMD's variant of traverse_cwbvh.cl does not compile there; ISINTEL,
+// which a Xeon's name gave before, selects the same options as ISOTHER.
+std::string vendor_define(cl_device_id device, std::string name) {
+    cl_device_type type = 0;
+    clGetDeviceInfo(device, CL_DEVICE_TYPE, sizeof type, &type, nullptr);
+    if (type & CL_DEVICE_TYPE_CPU) return "ISOTHER";
     for (char& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (name.find("nvidia") != std::string::npos) return "ISNVIDIA";
     if (name.find("amd") != std::string::npos) return "ISAMD";
@@ -108,7 +115,7 @@ std::string vendor_define(std::string name) {
 }
 
 void build_program(Cl& cl, const std::string& tinybvh_dir, std::string& options) {
-    options = "-I " + tinybvh_dir + " -D" + vendor_define(cl.name) +
+    options = "-I " + tinybvh_dir + " -D" + vendor_define(cl.device, cl.name) +
               " -cl-std=CL2.0 -cl-strict-aliasing -cl-fast-relaxed-math -cl-single-precision-constant";
     cl_int e;
     const char* src = kWrapperSource;
