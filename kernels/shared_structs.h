@@ -169,6 +169,9 @@ typedef struct {
  * three siblings per level on its stack, plus the one it is about to pop. */
 #define CLP_BVH4_MAX_DEPTH (CLP_BVH_MAX_DEPTH / 2)
 #define CLP_BVH4_STACK (3 * CLP_BVH4_MAX_DEPTH + 1)
+/* Shadow rays push a leaf as ~(node * 4 + slot), a 32-bit int (traverse.cl,
+ * occlude_tree): so no more 4-wide nodes than this (host/bvh/wide.cpp). */
+#define CLP_BVH4_MAX_NODES (1 << 29)
 
 /* Triangle as traversal reads it, in BVH leaf order. prim is the index of the
  * triangle in the scene's original order (for material and shading data);

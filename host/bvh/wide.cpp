@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "util/error.hpp"
+
 namespace clpath {
 namespace {
 
@@ -98,11 +100,13 @@ std::vector<Bvh4Node> widen(const std::vector<BvhNode>& binary, WideningRule rul
 
 std::vector<Bvh4Node> widen_bvh(const std::vector<BvhNode>& binary, WideningRule rule) {
     if (binary.empty()) throw std::invalid_argument("cannot widen a BVH with no nodes");
-    if (rule == WideningRule::LargestFirst) {
-        std::vector<Bvh4Node> wide = widen(binary, WideningRule::LargestFirst);
-        if (!wide.empty()) return wide;
-    }
-    return widen(binary, WideningRule::TwoLevels);
+    std::vector<Bvh4Node> wide;
+    if (rule == WideningRule::LargestFirst) wide = widen(binary, WideningRule::LargestFirst);
+    if (wide.empty()) wide = widen(binary, WideningRule::TwoLevels);
+    if (wide.size() > std::size_t(CLP_BVH4_MAX_NODES))
+        throw Error("the scene's BVH has " + std::to_string(wide.size()) + " 4-wide nodes; the kernels address at most " +
+                    std::to_string(CLP_BVH4_MAX_NODES));
+    return wide;
 }
 
 int check_wide(const std::vector<Bvh4Node>& wide, const Bvh& bvh) {
