@@ -83,7 +83,7 @@ struct Results {
     std::vector<float> out;  // hit, t, b1, b2 per ray
 };
 
-// Each ray against every triangle of a mesh, through intersect_leaf (the
+// Each ray against every triangle of a mesh, through leaf_hits (the
 // renderer's loop over a leaf): the closest t, or -1 for a miss.
 std::vector<float> closest_over_mesh(const std::vector<glm::vec3>& mesh, const std::vector<float>& rays) {
     const std::uint32_t n = std::uint32_t(rays.size() / 6);

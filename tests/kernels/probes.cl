@@ -158,7 +158,7 @@ kernel void probe_brute(global const TriVerts* tris, uint tri_count, global cons
     Hit h;
     h.t = INFINITY;
     h.tri = -1;
-    intersect_leaf(&r, tris, 0, tri_count, &h);
+    leaf_hits(&r, tris, 0, tri_count, &h, 0);
     out_t[i] = h.t;
     out_prim[i] = h.tri >= 0 ? (int)tris[h.tri].prim : -1;
 }
