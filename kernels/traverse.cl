@@ -17,17 +17,16 @@
 #include "intersect.cl"
 #include "textures.cl"
 
-/* TriVerts and BvhNode are rows of four 4-byte fields at 16-byte offsets
- * (shared_structs.h asserts it): one aligned float4 load fetches a vertex or
- * a box corner, where three scalar loads would each be a separate access. */
 /* The triangles first..first+count-1 against the ray, nearest hit kept in
  * *hit; returns whether one was found, at the first one when stop_at_first
- * (a constant at each call, so folded). Inlined at every site: a call inside
- * the walk makes a CPU save and reload the ray's vector registers around it
- * (all caller-saved in the x86-64 ABI), and four inlined copies in
- * traverse_tree traced 1.05x the primary and 1.02x the diffuse rays per
- * second of one out-of-line copy on PoCL (bunny, room:1003542); GPU
- * compilers inline it anyway. */
+ * (a constant at each call, so folded). TriVerts are rows of four 4-byte
+ * fields at 16-byte offsets (shared_structs.h asserts it), so one aligned
+ * float4 load fetches a vertex. Inlined at every site: a call inside the
+ * walk makes a CPU save and reload the ray's vector registers around it (all
+ * caller-saved in the x86-64 ABI), and four inlined copies in traverse_tree
+ * traced 1.05x the primary and 1.02x the diffuse rays per second of one
+ * out-of-line copy on PoCL (bunny, room:1003542); GPU compilers inline it
+ * anyway. */
 __attribute__((always_inline)) inline int leaf_hits(const RayPre* r, global const TriVerts* tris, uint first,
                                                    uint count, Hit* hit, int stop_at_first CLP_ALPHA_PARAM) {
     int found = 0;
@@ -55,6 +54,26 @@ typedef BvhNode AccelNode;
 #else
 typedef Bvh4Node AccelNode;
 #endif
+
+/* No hit yet: the search interval ends at tmax. Not forced inline (it runs
+ * once per walk): Oclgrind 21.10 under -cl-opt-disable could not create the
+ * kernels when an always_inline function returned this struct. */
+inline Hit no_hit(float tmax) {
+    Hit hit;
+    hit.t = tmax;
+    hit.tri = -1;
+    hit.b1 = hit.b2 = 0.0f;
+    return hit;
+}
+
+/* The entry distances of a Bvh4Node's four child boxes (rows n), or
+ * +INFINITY for each missed; the ordered test where 1/dir is finite. Forced
+ * inline, as leaf_hits: with two callers PoCL kept it out of line, and both
+ * walks lost 8 to 14 % of their speed to the call. */
+__attribute__((always_inline)) inline float4 node_entry4(const RayBox4* rb, const RayPre* r, int finite,
+                                                     global const float4* n, float tmax) {
+    return finite ? intersect_box4_ordered(rb, n, tmax) : intersect_box4(r, n[0], n[1], n[2], n[3], n[4], n[5], tmax);
+}
 
 /* One compare-exchange of a sorting network: lanes i < j of d end in
  * ascending order, child and count following their distance. */
@@ -84,10 +103,7 @@ typedef Bvh4Node AccelNode;
  * farthest first, so the nearest is the next popped. */
 inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
                          uint* visits CLP_ALPHA_PARAM) {
-    Hit hit;
-    hit.t = tmax;
-    hit.tri = -1;
-    hit.b1 = hit.b2 = 0.0f;
+    Hit hit = no_hit(tmax);
     /* Node indices only: keeping each entry distance too, to drop nodes
      * entered beyond a hit found after the push, cost more than it saved
      * (bunny, PoCL) and doubles the private memory. */
@@ -99,8 +115,7 @@ inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tr
     for (;;) {
         global const float4* n = (global const float4*)&nodes[node];
         if (visits) ++*visits;
-        float4 d = finite ? intersect_box4_ordered(&rb, n, hit.t)
-                          : intersect_box4(r, n[0], n[1], n[2], n[3], n[4], n[5], hit.t);
+        float4 d = node_entry4(&rb, r, finite, n, hit.t);
         int4 child = as_int4(n[6]);
         uint4 count = as_uint4(n[7]);
         d = select(d, (float4)(INFINITY), child == 0); /* empty slots */
@@ -141,18 +156,14 @@ inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tr
  * The children entered are pushed unsorted, interior ones first and leaves
  * last, so the leaves pop first (one may end the walk); a leaf is pushed as
  * ~(node * 4 + slot) and its range read back from the node when it pops.
- * The leaf test then has one site, inlined, and the walk makes no call,
- * which on a CPU would save and reload the ray's vector registers (all
- * caller-saved in the x86-64 ABI): about a fifth more shadow rays per second
- * on PoCL than traverse_tree's walk. The same for the closest hit gained on
- * primary rays and lost on diffuse ones, where intersecting the leaves
- * before pushing lets their hit cull the pushes. */
+ * The loop then has a single leaf site: 1.11x the shadow rays per second on
+ * PoCL (bunny) of testing each slot's leaf before the pushes, both inlined.
+ * The closest hit keeps that order (traverse_tree), as the hit its leaves
+ * find culls the pushes: with its leaves on the stack too it traced fewer
+ * diffuse rays per second. */
 inline Hit occlude_tree(global const Bvh4Node* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
                         uint* visits CLP_ALPHA_PARAM) {
-    Hit hit;
-    hit.t = tmax;
-    hit.tri = -1;
-    hit.b1 = hit.b2 = 0.0f;
+    Hit hit = no_hit(tmax);
     int stack[CLP_BVH4_STACK];
     int sp = 0;
     int entry = 0;
@@ -162,8 +173,7 @@ inline Hit occlude_tree(global const Bvh4Node* nodes, global const TriVerts* tri
         if (entry >= 0) {
             global const float4* n = (global const float4*)&nodes[entry];
             if (visits) ++*visits;
-            float4 d = finite ? intersect_box4_ordered(&rb, n, hit.t)
-                              : intersect_box4(r, n[0], n[1], n[2], n[3], n[4], n[5], hit.t);
+            float4 d = node_entry4(&rb, r, finite, n, hit.t);
             int4 child = as_int4(n[6]);
             int4 in = d < hit.t;
             if (in.s0 && child.s0 > 0) stack[sp++] = child.s0;
@@ -191,10 +201,7 @@ inline Hit occlude_tree(global const Bvh4Node* nodes, global const TriVerts* tri
  * traverse_bvh. */
 inline Hit traverse_flat(global const BvhNode* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
                          int any_hit, uint* visits CLP_ALPHA_PARAM) {
-    Hit hit;
-    hit.t = tmax;
-    hit.tri = -1;
-    hit.b1 = hit.b2 = 0.0f;
+    Hit hit = no_hit(tmax);
     for (int i = 0;; ++i) {
         global const BvhNode* n = &nodes[i];
         if (visits) ++*visits;
