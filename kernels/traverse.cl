@@ -87,7 +87,8 @@ __attribute__((always_inline)) inline float4 node_entry4(const RayBox4* rb, cons
 /* Closest hit, after the sort: the children entered before the closest hit
  * so far are a prefix of the slots, so each test of a slot is nested in its
  * nearer neighbour's and the first slot entered beyond the hit ends the
- * tests. A leaf is intersected at once; an interior child is pushed. */
+ * tests. A leaf is intersected at once; an interior child is pushed (but the
+ * nearest, walked next). */
 #define CLP_SORTED_LEAF(k)                                                      \
     if (child.s##k < 0) leaf_hits(r, tris, (uint)~child.s##k, count.s##k, &hit, 0 CLP_ALPHA_ARG);
 #define CLP_SORTED_PUSH(k)                                                      \
@@ -99,8 +100,8 @@ __attribute__((always_inline)) inline float4 node_entry4(const RayBox4* rb, cons
  * Each step fetches one 128-byte Bvh4Node as eight float4 rows and tests its
  * four boxes in one vector slab test. The children are sorted by entry
  * distance (a five-exchange sorting network, Knuth TAOCP vol. 3, 5.3.4), the
- * leaves among them intersected nearest first, and the interior ones pushed
- * farthest first, so the nearest is the next popped. */
+ * leaves among them intersected nearest first, the nearest interior one
+ * walked next and the others pushed farthest first. */
 inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
                          uint* visits CLP_ALPHA_PARAM) {
     Hit hit = no_hit(tmax);
@@ -142,7 +143,11 @@ inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tr
                     }
                     CLP_SORTED_PUSH(1)
                 }
-                CLP_SORTED_PUSH(0)
+                /* The nearest interior child is walked next, not pushed and popped. */
+                if (child.s0 > 0) {
+                    node = child.s0;
+                    continue;
+                }
             }
         }
         if (sp == 0) break;
