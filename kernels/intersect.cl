@@ -29,7 +29,7 @@ typedef struct {
     /* Every 1/dir component is finite: then (box plane - org) * inv_dir is
      * never 0 * inf, and the slab test's NaN repair can be skipped. */
     int inv_dir_finite;
-    /* Bvh4Node rows of each axis's near and far planes (lo_x = 0, hi_x = 1,
+    /* Bvh4Node128 rows of each axis's near and far planes (lo_x = 0, hi_x = 1,
      * lo_y = 2, ...): lo is entered first where 1/dir >= 0. */
     int near_x, near_y, near_z;
 } RayPre;
@@ -205,7 +205,7 @@ inline float4 slab_entry4(float4 nx, float4 ny, float4 nz, float4 fx, float4 fy,
     return select((float4)(INFINITY), tnear, tnear <= tfar);
 }
 
-/* intersect_box for the four child boxes of a Bvh4Node at once, stored by
+/* intersect_box for the four child boxes of a Bvh4Node128 at once, stored by
  * coordinate: lane by lane the same slab distances, the same NaN repair and
  * the same conservative widening, so the same boxes are entered at the same
  * distances. */
@@ -257,7 +257,7 @@ inline RayBox4 ray_box4(const RayPre* r) {
 }
 
 /* intersect_box4 for a ray whose 1/dir is finite, over the node rows n (a
- * Bvh4Node), each axis's planes read in the order the ray crosses them. For
+ * Bvh4Node128), each axis's planes read in the order the ray crosses them. For
  * such a ray the slab distances are finite, and (near - o) / d <= (far - o) / d
  * also after rounding (rounding is monotonic), so the per-axis min and max of
  * intersect_box4 are known in advance: the same distances, bit for bit, with

@@ -125,8 +125,14 @@ typedef std::uint32_t uint;
 #define CLP_RR_DEPTH 2u      /* the thesis renderer's rule: p = 1 - 1/(max_depth - depth) */
 
 /*
- * BVH node, in the Aila & Laine (2009) "both children in one node" layout:
- * a traversal step fetches one 64-byte node and tests both child boxes.
+ * Node layouts are named by their size in bytes, the figure a traversal's
+ * memory traffic follows; each is walked by its own kernel file
+ * (kernels/traverse_*.cl).
+ *
+ * The binary BVH node, in the Aila & Laine (2009) "both children in one node"
+ * layout: the builder's output (host/bvh/), widened into Bvh4Node128 for
+ * traversal, and the record of the flat list of object boxes
+ * (traverse_flat.cl); one fetch of 64 bytes holds both child boxes.
  * child[i] >= 0: index of an interior node.
  * child[i] <  0: a leaf holding count[i] triangles from ~child[i] on
  *                (count 0: an empty slot, used only when the root is a leaf).
@@ -140,7 +146,7 @@ typedef struct {
     int child1;
     float hi1[3];
     uint count1;
-} BvhNode;
+} BvhNode64;
 
 /*
  * The BVH as the kernels traverse it: four children per node, made from the
@@ -148,7 +154,7 @@ typedef struct {
  * nodes were the fastest layout for OpenCL on CPUs and GPUs in tinybvh's
  * measurements. The boxes are stored by coordinate (lo_x of the four
  * children in one row, ...), so one float4 slab test handles all four.
- * child[i] >= 0: index of an interior Bvh4Node.
+ * child[i] >= 0: index of an interior Bvh4Node128.
  * child[i] <  0: a leaf of count[i] (>= 1) triangles from ~child[i] on.
  * child[i] == 0 with count[i] == 0: an empty slot (no node has the root as a child).
  */
@@ -161,7 +167,7 @@ typedef struct {
     float hi_z[4];
     int child[4];
     uint count[4];
-} Bvh4Node;
+} Bvh4Node128;
 
 /* The widening (host/bvh/wide.cpp) keeps the 4-wide tree at most half as
  * deep as the binary bound (where its first choice would not, it makes every
@@ -169,8 +175,8 @@ typedef struct {
  * three siblings per level on its stack, plus the one it is about to pop. */
 #define CLP_BVH4_MAX_DEPTH (CLP_BVH_MAX_DEPTH / 2)
 #define CLP_BVH4_STACK (3 * CLP_BVH4_MAX_DEPTH + 1)
-/* Shadow rays push a leaf as ~(node * 4 + slot), a 32-bit int (traverse.cl,
- * occlude_tree): so no more 4-wide nodes than this (host/bvh/wide.cpp). */
+/* Shadow rays push a leaf as ~(node * 4 + slot), a 32-bit int
+ * (traverse_bvh4.cl, occlude_tree): so no more 4-wide nodes than this (host/bvh/wide.cpp). */
 #define CLP_BVH4_MAX_NODES (1 << 29)
 
 /* Triangle as traversal reads it, in BVH leaf order. prim is the index of the
@@ -321,17 +327,17 @@ typedef struct {
     int tri;
 } Hit;
 
-CLP_STATIC_ASSERT(sizeof(BvhNode) == 64, bvh_node_is_64_bytes);
+CLP_STATIC_ASSERT(sizeof(BvhNode64) == 64, bvh_node_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(TriVerts) == 48, tri_verts_is_48_bytes);
-CLP_STATIC_ASSERT(sizeof(Bvh4Node) == 128, bvh4_node_is_128_bytes);
-CLP_STATIC_ASSERT(__builtin_offsetof(Bvh4Node, hi_z) == 80 && __builtin_offsetof(Bvh4Node, child) == 96 &&
-                      __builtin_offsetof(Bvh4Node, count) == 112,
+CLP_STATIC_ASSERT(sizeof(Bvh4Node128) == 128, bvh4_node_is_128_bytes);
+CLP_STATIC_ASSERT(__builtin_offsetof(Bvh4Node128, hi_z) == 80 && __builtin_offsetof(Bvh4Node128, child) == 96 &&
+                      __builtin_offsetof(Bvh4Node128, count) == 112,
                   bvh4_node_rows);
-/* Traversal reads nodes and triangles as float4 rows (kernels/traverse.cl):
+/* Traversal reads nodes and triangles as float4 rows (kernels/traverse_*.cl):
  * each row's fourth field sits at offset 12 of its 16 bytes. */
-CLP_STATIC_ASSERT(__builtin_offsetof(BvhNode, child0) == 12 && __builtin_offsetof(BvhNode, count0) == 28 &&
-                      __builtin_offsetof(BvhNode, lo1) == 32 && __builtin_offsetof(BvhNode, child1) == 44 &&
-                      __builtin_offsetof(BvhNode, count1) == 60,
+CLP_STATIC_ASSERT(__builtin_offsetof(BvhNode64, child0) == 12 && __builtin_offsetof(BvhNode64, count0) == 28 &&
+                      __builtin_offsetof(BvhNode64, lo1) == 32 && __builtin_offsetof(BvhNode64, child1) == 44 &&
+                      __builtin_offsetof(BvhNode64, count1) == 60,
                   bvh_node_rows);
 CLP_STATIC_ASSERT(__builtin_offsetof(TriVerts, v1) == 16 && __builtin_offsetof(TriVerts, v2) == 32,
                   tri_verts_rows);

@@ -1,13 +1,14 @@
 /* Traversal of the scene's acceleration structure. traverse_bvh() is what
- * the integrator and the ray-batch kernels call; it walks the 4-wide BVH, or, in a
- * program built with -DCLP_ACCEL_FLAT, the thesis renderer's flat list of
- * object boxes (host/bvh/flat.hpp), the baseline the BVH is measured against.
- *
- * BVH traversal: a stack of CLP_BVH4_STACK entries (enough for the deepest
- * tree the builder and the widening allow), nearest child first for the
- * closest hit (traverse_tree), leaves first for any hit (occlude_tree). Nodes
- * hold their four children's boxes, so each step tests four boxes from one
- * 128-byte fetch (shared_structs.h, Bvh4Node).
+ * the integrator and the ray-batch kernels call. A program holds one node
+ * layout, each in a file of its own that defines AccelNode (the record the
+ * kernels receive), accel_closest_hit() and accel_any_hit():
+ *   traverse_bvh4.cl  the 4-wide BVH (Bvh4Node128), the default;
+ *   traverse_flat.cl  with -DCLP_ACCEL_FLAT, the thesis renderer's flat list
+ *                     of object boxes in BvhNode64 records (host/bvh/flat.hpp),
+ *                     the baseline the BVH is measured against.
+ * A new layout is a new file beside them, included and selected below.
+ * What every layout shares (the leaf test, the empty hit) is in
+ * traverse_leaf.cl.
  * With CLP_HAS_ALPHA every function takes the alpha scene as a last
  * argument (CLP_ALPHA_PARAM, textures.cl) and skips cut-out hits. */
 #ifndef CLP_TRAVERSE_CL
@@ -16,222 +17,25 @@
 #include "common.h"
 #include "intersect.cl"
 #include "textures.cl"
+#include "traverse_leaf.cl"
 
-/* The triangles first..first+count-1 against the ray, nearest hit kept in
- * *hit; returns whether one was found, at the first one when stop_at_first
- * (a constant at each call, so folded). TriVerts are rows of four 4-byte
- * fields at 16-byte offsets (shared_structs.h asserts it), so one aligned
- * float4 load fetches a vertex. Inlined at every site: a call inside the
- * walk makes a CPU save and reload the ray's vector registers around it (all
- * caller-saved in the x86-64 ABI), and four inlined copies in traverse_tree
- * traced 1.05x the primary and 1.02x the diffuse rays per second of one
- * out-of-line copy on PoCL (bunny, room:1003542); GPU compilers inline it
- * anyway. */
-__attribute__((always_inline)) inline int leaf_hits(const RayPre* r, global const TriVerts* tris, uint first,
-                                                   uint count, Hit* hit, int stop_at_first CLP_ALPHA_PARAM) {
-    int found = 0;
-    for (uint i = first; i < first + count; ++i) {
-        global const float4* tv = (global const float4*)&tris[i];
-        float t, b1, b2;
-        if (intersect_triangle(r, tv[0].xyz, tv[1].xyz, tv[2].xyz, hit->t, &t, &b1, &b2)) {
-#ifdef CLP_HAS_ALPHA
-            if (!alpha_keeps_hit(alpha, tris[i].prim, b1, b2, r)) continue; /* a cut-out: as if not there (textures.cl) */
-#endif
-            hit->t = t;
-            hit->b1 = b1;
-            hit->b2 = b2;
-            hit->tri = (int)i;
-            found = 1;
-            if (stop_at_first) return 1;
-        }
-    }
-    return found;
-}
-
-/* The node records the kernels receive: the 4-wide BVH, or the flat list. */
-#ifdef CLP_ACCEL_FLAT
-typedef BvhNode AccelNode;
+/* The layout this program walks: exactly one CLP_LAYOUT_* is defined, and
+ * each layout file compiles only under its own. */
+#if defined(CLP_ACCEL_FLAT)
+#define CLP_LAYOUT_FLAT
 #else
-typedef Bvh4Node AccelNode;
+#define CLP_LAYOUT_BVH4
 #endif
 
-/* No hit yet: the search interval ends at tmax. Not forced inline (it runs
- * once per walk): Oclgrind 21.10 under -cl-opt-disable could not create the
- * kernels when an always_inline function returned this struct. */
-inline Hit no_hit(float tmax) {
-    Hit hit;
-    hit.t = tmax;
-    hit.tri = -1;
-    hit.b1 = hit.b2 = 0.0f;
-    return hit;
-}
-
-/* The entry distances of a Bvh4Node's four child boxes (rows n), or
- * +INFINITY for each missed; the ordered test where 1/dir is finite. Forced
- * inline, as leaf_hits: with two callers PoCL kept it out of line, and both
- * walks lost 8 to 14 % of their speed to the call. */
-__attribute__((always_inline)) inline float4 node_entry4(const RayBox4* rb, const RayPre* r, int finite,
-                                                     global const float4* n, float tmax) {
-    return finite ? intersect_box4_ordered(rb, n, tmax) : intersect_box4(r, n[0], n[1], n[2], n[3], n[4], n[5], tmax);
-}
-
-/* One compare-exchange of a sorting network: lanes i < j of d end in
- * ascending order, child and count following their distance. */
-#define CLP_SORT2(i, j, sw)                                                     \
-    if (d.s##j < d.s##i) {                                                      \
-        d = d.sw;                                                               \
-        child = child.sw;                                                       \
-        count = count.sw;                                                       \
-    }
-
-/* Closest hit, after the sort: the children entered before the closest hit
- * so far are a prefix of the slots, so each test of a slot is nested in its
- * nearer neighbour's and the first slot entered beyond the hit ends the
- * tests. A leaf is intersected at once; an interior child is pushed (but the
- * nearest, walked next). */
-#define CLP_SORTED_LEAF(k)                                                      \
-    if (child.s##k < 0) leaf_hits(r, tris, (uint)~child.s##k, count.s##k, &hit, 0 CLP_ALPHA_ARG);
-#define CLP_SORTED_PUSH(k)                                                      \
-    if (child.s##k > 0) stack[sp++] = child.s##k;
-
-/* Closest hit in (0, tmax). *visits (may be NULL) counts nodes fetched, for
- * the traversal heat map and benchmarks.
- *
- * Each step fetches one 128-byte Bvh4Node as eight float4 rows and tests its
- * four boxes in one vector slab test. The children are sorted by entry
- * distance (a five-exchange sorting network, Knuth TAOCP vol. 3, 5.3.4), the
- * leaves among them intersected nearest first, the nearest interior one
- * walked next and the others pushed farthest first. */
-inline Hit traverse_tree(global const Bvh4Node* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
-                         uint* visits CLP_ALPHA_PARAM) {
-    Hit hit = no_hit(tmax);
-    /* Node indices only: keeping each entry distance too, to drop nodes
-     * entered beyond a hit found after the push, cost more than it saved
-     * (bunny, PoCL) and doubles the private memory. */
-    int stack[CLP_BVH4_STACK];
-    int sp = 0;
-    int node = 0;
-    const RayBox4 rb = ray_box4(r);
-    const int finite = r->inv_dir_finite;
-    for (;;) {
-        global const float4* n = (global const float4*)&nodes[node];
-        if (visits) ++*visits;
-        float4 d = node_entry4(&rb, r, finite, n, hit.t);
-        int4 child = as_int4(n[6]);
-        uint4 count = as_uint4(n[7]);
-        d = select(d, (float4)(INFINITY), child == 0); /* empty slots */
-        CLP_SORT2(0, 1, s1023)
-        CLP_SORT2(2, 3, s0132)
-        CLP_SORT2(0, 2, s2103)
-        CLP_SORT2(1, 3, s0321)
-        CLP_SORT2(1, 2, s0213)
-        if (d.s0 < hit.t) {
-            CLP_SORTED_LEAF(0)
-            if (d.s1 < hit.t) {
-                CLP_SORTED_LEAF(1)
-                if (d.s2 < hit.t) {
-                    CLP_SORTED_LEAF(2)
-                    if (d.s3 < hit.t) CLP_SORTED_LEAF(3)
-                }
-            }
-            /* Again, against the hit the leaves may have found. */
-            if (d.s0 < hit.t) {
-                if (d.s1 < hit.t) {
-                    if (d.s2 < hit.t) {
-                        if (d.s3 < hit.t) CLP_SORTED_PUSH(3)
-                        CLP_SORTED_PUSH(2)
-                    }
-                    CLP_SORTED_PUSH(1)
-                }
-                /* The nearest interior child is walked next, not pushed and popped. */
-                if (child.s0 > 0) {
-                    node = child.s0;
-                    continue;
-                }
-            }
-        }
-        if (sp == 0) break;
-        node = stack[--sp];
-    }
-    return hit;
-}
-
-/* Any hit in (0, tmax), for shadow rays: returns at the first hit found,
- * which need not be the closest; same contract otherwise as traverse_tree.
- * The children entered are pushed unsorted, interior ones first and leaves
- * last, so the leaves pop first (one may end the walk); a leaf is pushed as
- * ~(node * 4 + slot) and its range read back from the node when it pops.
- * The loop then has a single leaf site: 1.11x the shadow rays per second on
- * PoCL (bunny) of testing each slot's leaf before the pushes, both inlined.
- * The closest hit keeps that order (traverse_tree), as the hit its leaves
- * find culls the pushes: with its leaves on the stack too it traced fewer
- * diffuse rays per second. */
-inline Hit occlude_tree(global const Bvh4Node* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
-                        uint* visits CLP_ALPHA_PARAM) {
-    Hit hit = no_hit(tmax);
-    int stack[CLP_BVH4_STACK];
-    int sp = 0;
-    int entry = 0;
-    const RayBox4 rb = ray_box4(r);
-    const int finite = r->inv_dir_finite;
-    for (;;) {
-        if (entry >= 0) {
-            global const float4* n = (global const float4*)&nodes[entry];
-            if (visits) ++*visits;
-            float4 d = node_entry4(&rb, r, finite, n, hit.t);
-            int4 child = as_int4(n[6]);
-            int4 in = d < hit.t;
-            if (in.s0 && child.s0 > 0) stack[sp++] = child.s0;
-            if (in.s1 && child.s1 > 0) stack[sp++] = child.s1;
-            if (in.s2 && child.s2 > 0) stack[sp++] = child.s2;
-            if (in.s3 && child.s3 > 0) stack[sp++] = child.s3;
-            if (in.s0 && child.s0 < 0) stack[sp++] = ~(entry * 4);
-            if (in.s1 && child.s1 < 0) stack[sp++] = ~(entry * 4 + 1);
-            if (in.s2 && child.s2 < 0) stack[sp++] = ~(entry * 4 + 2);
-            if (in.s3 && child.s3 < 0) stack[sp++] = ~(entry * 4 + 3);
-        } else {
-            const uint ref = (uint)~entry;
-            global const Bvh4Node* n = &nodes[ref >> 2];
-            if (leaf_hits(r, tris, (uint)~n->child[ref & 3u], n->count[ref & 3u], &hit, 1 CLP_ALPHA_ARG)) return hit;
-        }
-        if (sp == 0) break;
-        entry = stack[--sp];
-    }
-    return hit;
-}
-
-/* The flat list: every record's two object boxes are tested, in order, and
- * a box entered before the closest hit so far has all its triangles tested.
- * The list ends at the first slot whose child is not a leaf. Same contract as
- * traverse_bvh. */
-inline Hit traverse_flat(global const BvhNode* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
-                         int any_hit, uint* visits CLP_ALPHA_PARAM) {
-    Hit hit = no_hit(tmax);
-    for (int i = 0;; ++i) {
-        global const BvhNode* n = &nodes[i];
-        if (visits) ++*visits;
-        if (n->child0 >= 0) break;
-        if (intersect_box(r, load3g(n->lo0), load3g(n->hi0), hit.t) < INFINITY &&
-            leaf_hits(r, tris, (uint)~n->child0, n->count0, &hit, 0 CLP_ALPHA_ARG) && any_hit)
-            return hit;
-        if (n->child1 >= 0) break;
-        if (intersect_box(r, load3g(n->lo1), load3g(n->hi1), hit.t) < INFINITY &&
-            leaf_hits(r, tris, (uint)~n->child1, n->count1, &hit, 0 CLP_ALPHA_ARG) && any_hit)
-            return hit;
-    }
-    return hit;
-}
+#include "traverse_bvh4.cl"
+#include "traverse_flat.cl"
 
 /* The hit of a ray in (0, tmax): the closest, or with any_hit (shadow rays)
  * the first found. *visits (may be NULL) counts nodes fetched. */
 inline Hit traverse_bvh(global const AccelNode* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
                         int any_hit, uint* visits CLP_ALPHA_PARAM) {
-#ifdef CLP_ACCEL_FLAT
-    return traverse_flat(nodes, tris, r, tmax, any_hit, visits CLP_ALPHA_ARG);
-#else
-    if (any_hit) return occlude_tree(nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
-    return traverse_tree(nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
-#endif
+    if (any_hit) return accel_any_hit(nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
+    return accel_closest_hit(nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
 }
 
 #endif

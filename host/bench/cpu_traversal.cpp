@@ -68,7 +68,7 @@ CpuHit walk(const Bvh& bvh, const BatchRay& br, bool at_origin) {
     int sp = 0;
     stack[sp++] = 0;
     while (sp > 0) {
-        const BvhNode& n = bvh.nodes[std::size_t(stack[--sp])];
+        const BvhNode64& n = bvh.nodes[std::size_t(stack[--sp])];
         for (int s = 0; s < 2; ++s) {
             const int child = s ? n.child1 : n.child0;
             const std::uint32_t count = s ? n.count1 : n.count0;

@@ -24,7 +24,7 @@ const char* accel_name(Accel accel);
 Bvh build_accel(Accel accel, const std::vector<glm::vec3>& vertices,
                 const std::vector<std::uint32_t>& triangle_object, const BvhBuildOptions& options = {});
 
-// The node buffer the kernels traverse (kernels/traverse.cl, AccelNode), as
+// The node buffer the kernels traverse (kernels/traverse*.cl, AccelNode), as
 // bytes: the BVH widened to four children per node (bvh/wide.hpp), or the
 // flat list's records as built.
 std::vector<unsigned char> device_nodes(Accel accel, const Bvh& structure);

@@ -21,7 +21,7 @@ float node_area(const TreeNode& n) {
     return 2 * (ex * ey + ey * ez + ez * ex);
 }
 
-void set_slot(BvhNode& node, int slot, const TreeNode& c, int child_index) {
+void set_slot(BvhNode64& node, int slot, const TreeNode& c, int child_index) {
     float* lo = slot == 0 ? node.lo0 : node.lo1;
     float* hi = slot == 0 ? node.hi0 : node.hi1;
     for (int a = 0; a < 3; ++a) {
@@ -39,12 +39,12 @@ struct FlatStats {
     int max_depth = 0;
 };
 
-// Depth first from the interior node at slot root, its BvhNode at index
+// Depth first from the interior node at slot root, its BvhNode64 at index
 // first, the nodes below from first + 1 on (a node's children get their
-// indices together, when it is visited). offset_of(slot): the BvhNode index
+// indices together, when it is visited). offset_of(slot): the BvhNode64 index
 // of a subtree flattened apart, or -1 to descend into it here.
 template <class OffsetOf>
-int flatten_from(const TreeNode* tree, std::uint32_t root, int depth, int first, BvhNode* out, float root_area,
+int flatten_from(const TreeNode* tree, std::uint32_t root, int depth, int first, BvhNode64* out, float root_area,
                  float traversal_cost, FlatStats& st, OffsetOf offset_of) {
     struct Item {
         std::uint32_t slot;
@@ -76,7 +76,7 @@ int flatten_from(const TreeNode* tree, std::uint32_t root, int depth, int first,
     return next;
 }
 
-// Flattens the binary tree: one BvhNode per interior node, leaves inline in
+// Flattens the binary tree: one BvhNode64 per interior node, leaves inline in
 // their parent's slot (Aila & Laine 2009 layout). The nodes above the
 // subtrees first, then each subtree's, left to right, each flattened by a
 // thread at an offset known from the leaf counts; the sums are taken in a
@@ -86,7 +86,7 @@ void flatten(const bvh_build::Tree& t, Bvh& bvh, float traversal_cost, int threa
     const float root_area = std::max(node_area(tree[0]), 1e-30f);
     BvhStats& st = bvh.stats;
     if (tree[0].count) {  // the whole tree is one leaf
-        BvhNode root{};
+        BvhNode64 root{};
         set_slot(root, 0, tree[0], 0);
         set_slot(root, 1, tree[0], 0);
         root.child1 = ~0;
@@ -112,7 +112,7 @@ void flatten(const bvh_build::Tree& t, Bvh& bvh, float traversal_cost, int threa
         total += s.leaves - 1;
     }
     bvh.nodes.resize(total);
-    BvhNode* out = bvh.nodes.data();
+    BvhNode64* out = bvh.nodes.data();
     std::vector<FlatStats> part(starts.size());
     FlatStats top;
     if (t.top_interior > 0) {
@@ -220,7 +220,7 @@ void check_bvh(const Bvh& bvh, std::size_t triangle_count) {
         stack.pop_back();
         if (it.depth > CLP_BVH_MAX_DEPTH) fail("depth " + std::to_string(it.depth) + " exceeds the traversal stack");
         if (seen_node[it.node]++) fail("node " + std::to_string(it.node) + " reached twice");
-        const BvhNode& n = bvh.nodes[it.node];
+        const BvhNode64& n = bvh.nodes[it.node];
         for (int s = 0; s < 2; ++s) {
             const float* lo = s ? n.lo1 : n.lo0;
             const float* hi = s ? n.hi1 : n.hi0;
@@ -228,7 +228,7 @@ void check_bvh(const Bvh& bvh, std::size_t triangle_count) {
             const std::uint32_t count = s ? n.count1 : n.count0;
             if (child >= 0) {
                 if (std::size_t(child) >= bvh.nodes.size()) fail("child index out of range");
-                const BvhNode& c = bvh.nodes[child];
+                const BvhNode64& c = bvh.nodes[child];
                 if (!contains_box(lo, hi, c.lo0, c.hi0) || !contains_box(lo, hi, c.lo1, c.hi1))
                     fail("node " + std::to_string(child) + "'s box is not inside its parent's slot");
                 stack.push_back({child, it.depth + 1});

@@ -20,14 +20,14 @@ struct BvhBuildOptions {
 
 struct BvhStats {
     double build_ms = 0;
-    std::size_t node_count = 0;  // BvhNode records (each holds two children)
+    std::size_t node_count = 0;  // BvhNode64 records (each holds two children)
     std::size_t leaf_count = 0;
-    int max_depth = 0;    // in BvhNode levels, root = 1
+    int max_depth = 0;    // in BvhNode64 levels, root = 1
     double sah_cost = 0;  // SAH cost normalised by the root's surface area
 };
 
 struct Bvh {
-    std::vector<BvhNode> nodes;       // nodes[0] is the root
+    std::vector<BvhNode64> nodes;       // nodes[0] is the root
     std::vector<TriVerts> triangles;  // in leaf order; .prim is the scene's triangle index
     BvhStats stats;
 };

@@ -21,7 +21,7 @@ struct ObjectBox {
     }
 };
 
-void set_slot(BvhNode& n, int slot, const ObjectBox& b) {
+void set_slot(BvhNode64& n, int slot, const ObjectBox& b) {
     float* lo = slot ? n.lo1 : n.lo0;
     float* hi = slot ? n.hi1 : n.hi0;
     for (int a = 0; a < 3; ++a) {
@@ -87,9 +87,9 @@ Bvh build_flat(const std::vector<glm::vec3>& vertices, const std::vector<std::ui
         t.pad2 = 0;
     }
     // Two objects per record, then a terminating slot (child >= 0).
-    flat.nodes.assign(boxes.size() / 2 + 1, BvhNode{});
+    flat.nodes.assign(boxes.size() / 2 + 1, BvhNode64{});
     for (std::size_t o = 0; o < boxes.size(); ++o) set_slot(flat.nodes[o / 2], int(o % 2), boxes[o]);
-    BvhNode& last = flat.nodes.back();
+    BvhNode64& last = flat.nodes.back();
     if (boxes.size() % 2) {
         last.child1 = 0;
         last.count1 = 0;
@@ -121,7 +121,7 @@ void check_flat(const Bvh& flat, std::size_t triangle_count) {
     bool ended = false;
     std::size_t next_first = 0;
     for (std::size_t r = 0; r < flat.nodes.size() && !ended; ++r) {
-        const BvhNode& n = flat.nodes[r];
+        const BvhNode64& n = flat.nodes[r];
         for (int s = 0; s < 2 && !ended; ++s) {
             const int child = s ? n.child1 : n.child0;
             if (child >= 0) {

@@ -1,10 +1,10 @@
 #pragma once
 // The thesis renderer's acceleration structure (trac0r, 2016): one bounding
 // box per object, and a ray that enters a box tests every triangle inside it.
-// Stored in BvhNode records so the kernels read it through the same buffers:
+// Stored in BvhNode64 records so the kernels read it through the same buffers:
 // each record holds two objects as leaf slots (child = ~first triangle,
 // count = the object's triangles); the list ends at the first slot whose
-// child is not a leaf (>= 0). kernels/traverse.cl walks it when built with
+// child is not a leaf (>= 0). kernels/traverse_flat.cl walks it when built with
 // -DCLP_ACCEL_FLAT.
 #include <cstdint>
 #include <vector>

@@ -25,12 +25,12 @@ struct Slot {
     }
 };
 
-Slot slot_of(const BvhNode& n, int s) {
+Slot slot_of(const BvhNode64& n, int s) {
     return s == 0 ? Slot{n.lo0, n.hi0, n.child0, n.count0} : Slot{n.lo1, n.hi1, n.child1, n.count1};
 }
 
 // Replaces slots[k] (interior) by its binary node's children; returns the new count.
-int expand(const std::vector<BvhNode>& binary, Slot* slots, int n, int k) {
+int expand(const std::vector<BvhNode64>& binary, Slot* slots, int n, int k) {
     const std::size_t c = std::size_t(slots[k].child);
     if (c >= binary.size()) throw std::invalid_argument("binary BVH: child index out of range");
     slots[k] = slot_of(binary[c], 0);
@@ -40,8 +40,8 @@ int expand(const std::vector<BvhNode>& binary, Slot* slots, int n, int k) {
 
 // The collapse under one rule. LargestFirst gives up (an empty vector) as
 // soon as a node would lie deeper than CLP_BVH4_MAX_DEPTH.
-std::vector<Bvh4Node> widen(const std::vector<BvhNode>& binary, WideningRule rule) {
-    std::vector<Bvh4Node> wide(1);
+std::vector<Bvh4Node128> widen(const std::vector<BvhNode64>& binary, WideningRule rule) {
+    std::vector<Bvh4Node128> wide(1);
     wide.reserve(binary.size() / 2 + 1);
     struct Item {
         int binary, wide, depth;
@@ -75,7 +75,7 @@ std::vector<Bvh4Node> widen(const std::vector<BvhNode>& binary, WideningRule rul
             if (best < 0) break;
             n = expand(binary, slots, n, best);
         }
-        Bvh4Node out{};
+        Bvh4Node128 out{};
         for (int k = 0; k < n; ++k) {
             const Slot& sl = slots[k];
             out.lo_x[k] = sl.lo[0], out.lo_y[k] = sl.lo[1], out.lo_z[k] = sl.lo[2];
@@ -98,9 +98,9 @@ std::vector<Bvh4Node> widen(const std::vector<BvhNode>& binary, WideningRule rul
 
 }  // namespace
 
-std::vector<Bvh4Node> widen_bvh(const std::vector<BvhNode>& binary, WideningRule rule) {
+std::vector<Bvh4Node128> widen_bvh(const std::vector<BvhNode64>& binary, WideningRule rule) {
     if (binary.empty()) throw std::invalid_argument("cannot widen a BVH with no nodes");
-    std::vector<Bvh4Node> wide;
+    std::vector<Bvh4Node128> wide;
     if (rule == WideningRule::LargestFirst) wide = widen(binary, WideningRule::LargestFirst);
     if (wide.empty()) wide = widen(binary, WideningRule::TwoLevels);
     if (wide.size() > std::size_t(CLP_BVH4_MAX_NODES))
@@ -109,7 +109,7 @@ std::vector<Bvh4Node> widen_bvh(const std::vector<BvhNode>& binary, WideningRule
     return wide;
 }
 
-int check_wide(const std::vector<Bvh4Node>& wide, const Bvh& bvh) {
+int check_wide(const std::vector<Bvh4Node128>& wide, const Bvh& bvh) {
     auto fail = [](const std::string& what) { throw std::logic_error("wide BVH invariant broken: " + what); };
     if (wide.empty()) fail("no root");
     std::vector<int> seen_tri(bvh.triangles.size(), 0), seen_node(wide.size(), 0);
@@ -127,7 +127,7 @@ int check_wide(const std::vector<Bvh4Node>& wide, const Bvh& bvh) {
         stack.pop_back();
         depth = std::max(depth, it.depth);
         if (it.depth > CLP_BVH4_MAX_DEPTH) fail("deeper than CLP_BVH4_MAX_DEPTH");
-        const Bvh4Node& n = wide[it.node];
+        const Bvh4Node128& n = wide[it.node];
         bool ended = false;
         int used = 0;
         for (int k = 0; k < 4; ++k) {

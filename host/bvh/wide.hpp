@@ -1,6 +1,6 @@
 #pragma once
 // The BVH as the kernels traverse it: the binary tree of bvh.hpp collapsed
-// into nodes of four children (Bvh4Node, kernels/shared_structs.h). Each wide
+// into nodes of four children (Bvh4Node128, kernels/shared_structs.h). Each wide
 // node takes its binary node's children, then splits the largest remaining
 // interior child while there is room (the collapse of Wald, Benthin and
 // Boulos 2008, "Getting rid of packets"). The child boxes are the binary
@@ -30,13 +30,13 @@ enum class WideningRule {
 // CLP_BVH4_MAX_DEPTH (the traversal stack's bound), so the result fits
 // whenever the binary tree is within CLP_BVH_MAX_DEPTH (check_wide tells).
 // Throws std::invalid_argument for no nodes.
-std::vector<Bvh4Node> widen_bvh(const std::vector<BvhNode>& binary,
+std::vector<Bvh4Node128> widen_bvh(const std::vector<BvhNode64>& binary,
                                 WideningRule rule = WideningRule::LargestFirst);
 
 // Returns the depth (root = 1). Throws std::logic_error naming the first
 // broken invariant: every child box contains everything below it (exactly),
 // every triangle of bvh is in one leaf, every node is reached once, empty
 // slots only after full ones, and the depth is within CLP_BVH4_MAX_DEPTH.
-int check_wide(const std::vector<Bvh4Node>& wide, const Bvh& bvh);
+int check_wide(const std::vector<Bvh4Node128>& wide, const Bvh& bvh);
 
 }  // namespace clpath

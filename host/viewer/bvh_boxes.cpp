@@ -12,7 +12,7 @@ struct Child {
     unsigned count;
 };
 
-Child child(const BvhNode& n, int i) {
+Child child(const BvhNode64& n, int i) {
     if (i == 0) return {{n.lo0[0], n.lo0[1], n.lo0[2]}, {n.hi0[0], n.hi0[1], n.hi0[2]}, n.child0, n.count0};
     return {{n.lo1[0], n.lo1[1], n.lo1[2]}, {n.hi1[0], n.hi1[1], n.hi1[2]}, n.child1, n.count1};
 }
@@ -20,7 +20,7 @@ Child child(const BvhNode& n, int i) {
 // Calls f(child, level) for every non-empty child slot down to max_level,
 // iteratively (a degenerate BVH can be deep).
 template <class F>
-void walk(const std::vector<BvhNode>& nodes, int max_level, F f) {
+void walk(const std::vector<BvhNode64>& nodes, int max_level, F f) {
     if (nodes.empty()) return;
     std::vector<std::pair<int, int>> stack{{0, 1}};  // (node, level of its children)
     while (!stack.empty()) {
@@ -38,13 +38,13 @@ void walk(const std::vector<BvhNode>& nodes, int max_level, F f) {
 
 }  // namespace
 
-std::vector<LevelBox> bvh_boxes(const std::vector<BvhNode>& nodes, int max_level) {
+std::vector<LevelBox> bvh_boxes(const std::vector<BvhNode64>& nodes, int max_level) {
     std::vector<LevelBox> boxes;
     walk(nodes, max_level, [&](const Child& c, int level) { boxes.push_back({c.lo, c.hi, level}); });
     return boxes;
 }
 
-int bvh_levels(const std::vector<BvhNode>& nodes) {
+int bvh_levels(const std::vector<BvhNode64>& nodes) {
     int deepest = 0;
     walk(nodes, 1 << 30, [&](const Child&, int level) { deepest = std::max(deepest, level); });
     return deepest;

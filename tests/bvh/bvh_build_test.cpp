@@ -93,7 +93,7 @@ TEST(BvhBuild, DeterministicAcrossThreadCounts) {
         o.threads = threads;
         const Bvh b = checked(v, o);
         ASSERT_EQ(a.nodes.size(), b.nodes.size()) << threads << " threads";
-        EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)), 0) << threads;
+        EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode64)), 0) << threads;
         EXPECT_EQ(std::memcmp(a.triangles.data(), b.triangles.data(), a.triangles.size() * sizeof(TriVerts)), 0)
             << threads << " threads";
     }

@@ -1,4 +1,4 @@
-// BVH traversal on the device (kernels/traverse.cl) equals brute force over
+// BVH traversal on the device (kernels/traverse_bvh4.cl) equals brute force over
 // every triangle (same distance, same triangle), for closest and any hit,
 // on several meshes; and closed meshes let no ray through.
 #include <gtest/gtest.h>

@@ -26,12 +26,12 @@ std::vector<glm::vec3> soup(std::size_t n, std::uint32_t seed) {
 
 // Both rules' trees pass check_wide; returns the default rule's depth.
 int checked_depth(const Bvh& bvh) {
-    const std::vector<Bvh4Node> wide = widen_bvh(bvh.nodes);
+    const std::vector<Bvh4Node128> wide = widen_bvh(bvh.nodes);
     int depth = 0;
     EXPECT_NO_THROW(depth = check_wide(wide, bvh));
     EXPECT_LE(wide.size(), bvh.nodes.size()) << "collapsing never adds nodes";
     EXPECT_LE(depth, bvh.stats.max_depth) << "each wide level spans at least one binary level";
-    const std::vector<Bvh4Node> two = widen_bvh(bvh.nodes, WideningRule::TwoLevels);
+    const std::vector<Bvh4Node128> two = widen_bvh(bvh.nodes, WideningRule::TwoLevels);
     int two_depth = 0;
     EXPECT_NO_THROW(two_depth = check_wide(two, bvh));
     EXPECT_LE(two.size(), bvh.nodes.size());
@@ -41,7 +41,7 @@ int checked_depth(const Bvh& bvh) {
 }
 
 // Slot `slot` of n: the flat box [lo, hi] in z = 0, and its child and count.
-void set_slot(BvhNode& n, int slot, glm::vec2 lo, glm::vec2 hi, int child, std::uint32_t count) {
+void set_slot(BvhNode64& n, int slot, glm::vec2 lo, glm::vec2 hi, int child, std::uint32_t count) {
     float* l = slot ? n.lo1 : n.lo0;
     float* h = slot ? n.hi1 : n.hi0;
     l[0] = lo.x, l[1] = lo.y, l[2] = 0;
@@ -58,7 +58,7 @@ void set_slot(BvhNode& n, int slot, glm::vec2 lo, glm::vec2 hi, int child, std::
 Bvh twig_chain(int depth) {
     Bvh b;
     const int chain = depth - 1;  // twigs hang one level below the chain
-    auto set = [](BvhNode& n, int slot, int child, std::uint32_t count, float size) {
+    auto set = [](BvhNode64& n, int slot, int child, std::uint32_t count, float size) {
         float* lo = slot ? n.lo1 : n.lo0;
         float* hi = slot ? n.hi1 : n.hi0;
         for (int a = 0; a < 3; ++a) lo[a] = 0, hi[a] = a == 2 ? 0 : size;
@@ -102,7 +102,7 @@ TEST(BvhWide, InvariantsOnOrdinaryMeshes) {
 
 TEST(BvhWide, OneAndTwoTriangles) {
     const Bvh one = build_bvh(soup(1, 2));
-    const std::vector<Bvh4Node> wide = widen_bvh(one.nodes);
+    const std::vector<Bvh4Node128> wide = widen_bvh(one.nodes);
     ASSERT_EQ(wide.size(), 1u);
     EXPECT_EQ(wide[0].count[0], 1u);
     EXPECT_EQ(wide[0].child[1], 0) << "the other slots are empty";
@@ -118,14 +118,14 @@ TEST(BvhWide, IdenticalTriangles) {
 
 TEST(BvhWide, DeepestBinaryTreeFitsTheStack) {
     const Bvh chain = twig_chain(CLP_BVH_MAX_DEPTH);
-    const std::vector<Bvh4Node> two = widen_bvh(chain.nodes, WideningRule::TwoLevels);
+    const std::vector<Bvh4Node128> two = widen_bvh(chain.nodes, WideningRule::TwoLevels);
     EXPECT_EQ(check_wide(two, chain), CLP_BVH4_MAX_DEPTH);
     // All boxes are equal, so opening the largest child first goes down one
     // chain link per wide level: too deep, and the default rule falls back.
-    const std::vector<Bvh4Node> wide = widen_bvh(chain.nodes);
+    const std::vector<Bvh4Node128> wide = widen_bvh(chain.nodes);
     EXPECT_EQ(check_wide(wide, chain), CLP_BVH4_MAX_DEPTH);
     ASSERT_EQ(wide.size(), two.size());
-    EXPECT_EQ(std::memcmp(wide.data(), two.data(), wide.size() * sizeof(Bvh4Node)), 0);
+    EXPECT_EQ(std::memcmp(wide.data(), two.data(), wide.size() * sizeof(Bvh4Node128)), 0);
 }
 
 // root = [A, B]; A = [A1, leaf 0] with A1 = [leaf 3, leaf 4] nearly as large
@@ -156,7 +156,7 @@ TEST(BvhWide, LargestFirstOpensTheLargestChildren) {
     }
     b.stats.max_depth = 3;
     // lo_x + hi_x of the root's one interior child.
-    auto interior_x = [](const Bvh4Node& root) {
+    auto interior_x = [](const Bvh4Node128& root) {
         int interior = -1;
         for (int k = 0; k < 4; ++k)
             if (root.child[k] > 0) {
@@ -165,19 +165,19 @@ TEST(BvhWide, LargestFirstOpensTheLargestChildren) {
             }
         return interior < 0 ? -1.0f : root.lo_x[interior] + root.hi_x[interior];
     };
-    const std::vector<Bvh4Node> largest = widen_bvh(b.nodes);
+    const std::vector<Bvh4Node128> largest = widen_bvh(b.nodes);
     ASSERT_NO_THROW(check_wide(largest, b));
     EXPECT_EQ(interior_x(largest[0]), 41.0f) << "B (x in [20, 21]) kept, A1 opened";
-    const std::vector<Bvh4Node> two = widen_bvh(b.nodes, WideningRule::TwoLevels);
+    const std::vector<Bvh4Node128> two = widen_bvh(b.nodes, WideningRule::TwoLevels);
     ASSERT_NO_THROW(check_wide(two, b));
     EXPECT_EQ(interior_x(two[0]), 9.0f) << "control: A1 (x in [0, 9]) kept, B opened";
 }
 
 TEST(BvhWide, ControlBrokenTreesAreRejected) {
     const Bvh bvh = build_bvh(soup(2000, 4));
-    const std::vector<Bvh4Node> good = widen_bvh(bvh.nodes);
+    const std::vector<Bvh4Node128> good = widen_bvh(bvh.nodes);
     ASSERT_NO_THROW(check_wide(good, bvh));
-    std::vector<Bvh4Node> w = good;
+    std::vector<Bvh4Node128> w = good;
     w[1].hi_x[0] = w[1].lo_x[0];  // a leaf or child box shrunk to a plane
     EXPECT_THROW(check_wide(w, bvh), std::logic_error);
     w = good;

@@ -1,6 +1,6 @@
 // The flat structure (bvh/flat.hpp: one box per object, the thesis
 // renderer's) holds every triangle once inside its object's box, and its
-// device traversal (kernels/traverse.cl with -DCLP_ACCEL_FLAT, through the
+// device traversal (kernels/traverse_flat.cl, -DCLP_ACCEL_FLAT, through the
 // ray-batch kernels) finds what brute force finds and what the BVH finds.
 #include <gtest/gtest.h>
 

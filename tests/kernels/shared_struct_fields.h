@@ -6,14 +6,14 @@
 #define CLP_SHARED_STRUCT_FIELDS_H
 
 #define CLP_SHARED_STRUCTS(S) \
-    S(BvhNode) S(Bvh4Node) S(TriVerts) S(Material) S(MaterialExt) S(Light) S(AliasEntry) S(CameraData) S(FrameParams) S(Counters) \
+    S(BvhNode64) S(Bvh4Node128) S(TriVerts) S(Material) S(MaterialExt) S(Light) S(AliasEntry) S(CameraData) S(FrameParams) S(Counters) \
     S(AccumPixel) S(BatchRay) S(Hit) S(TextureDesc)
 
 #define CLP_SHARED_FIELDS(F) \
-    F(BvhNode, lo0) F(BvhNode, child0) F(BvhNode, hi0) F(BvhNode, count0) \
-    F(BvhNode, lo1) F(BvhNode, child1) F(BvhNode, hi1) F(BvhNode, count1) \
-    F(Bvh4Node, lo_x) F(Bvh4Node, hi_x) F(Bvh4Node, lo_y) F(Bvh4Node, hi_y) F(Bvh4Node, lo_z) F(Bvh4Node, hi_z) \
-    F(Bvh4Node, child) F(Bvh4Node, count) \
+    F(BvhNode64, lo0) F(BvhNode64, child0) F(BvhNode64, hi0) F(BvhNode64, count0) \
+    F(BvhNode64, lo1) F(BvhNode64, child1) F(BvhNode64, hi1) F(BvhNode64, count1) \
+    F(Bvh4Node128, lo_x) F(Bvh4Node128, hi_x) F(Bvh4Node128, lo_y) F(Bvh4Node128, hi_y) F(Bvh4Node128, lo_z) F(Bvh4Node128, hi_z) \
+    F(Bvh4Node128, child) F(Bvh4Node128, count) \
     F(TriVerts, v0) F(TriVerts, prim) F(TriVerts, v1) F(TriVerts, light) F(TriVerts, v2) F(TriVerts, pad2) \
     F(Material, albedo) F(Material, kind) F(Material, emission) F(Material, flags) F(Material, roughness) \
     F(Material, ior) F(Material, metallic) F(Material, pad0) \

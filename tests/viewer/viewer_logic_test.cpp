@@ -11,7 +11,7 @@ using namespace clpath::viewer;
 
 namespace {
 
-void set_child(BvhNode& n, int i, glm::vec3 lo, glm::vec3 hi, int child, unsigned count) {
+void set_child(BvhNode64& n, int i, glm::vec3 lo, glm::vec3 hi, int child, unsigned count) {
     float* l = i ? n.lo1 : n.lo0;
     float* h = i ? n.hi1 : n.hi0;
     for (int a = 0; a < 3; ++a) {
@@ -23,8 +23,8 @@ void set_child(BvhNode& n, int i, glm::vec3 lo, glm::vec3 hi, int child, unsigne
 }
 
 // root -> (node 1, leaf); node 1 -> (leaf, leaf)
-std::vector<BvhNode> three_level_bvh() {
-    std::vector<BvhNode> nodes(2);
+std::vector<BvhNode64> three_level_bvh() {
+    std::vector<BvhNode64> nodes(2);
     set_child(nodes[0], 0, {0, 0, 0}, {1, 1, 1}, 1, 0);
     set_child(nodes[0], 1, {2, 0, 0}, {3, 1, 1}, ~0, 2);
     set_child(nodes[1], 0, {0, 0, 0}, {0.5f, 1, 1}, ~2, 1);
@@ -49,7 +49,7 @@ TEST(ViewerBvhBoxes, LevelsFollowTheTree) {
 }
 
 TEST(ViewerBvhBoxes, EmptySlotOfALeafRootIsSkipped) {
-    std::vector<BvhNode> nodes(1);
+    std::vector<BvhNode64> nodes(1);
     set_child(nodes[0], 0, {0, 0, 0}, {1, 1, 1}, ~0, 3);
     set_child(nodes[0], 1, {0, 0, 0}, {0, 0, 0}, ~0, 0);
     EXPECT_EQ(bvh_boxes(nodes, 3).size(), 1u);
