@@ -12,7 +12,7 @@ typedef struct {
 } Ray;
 
 /* (jx, jy) in [0,1)^2 is the position inside the pixel. */
-inline Ray camera_ray(constant const CameraData* cam, uint px, uint py, float jx, float jy) {
+static inline Ray camera_ray(constant const CameraData* cam, uint px, uint py, float jx, float jy) {
     float x = 2.0f * ((float)px + jx) / (float)cam->width - 1.0f;
     float y = 1.0f - 2.0f * ((float)py + jy) / (float)cam->height;
     Ray r;

@@ -6,7 +6,7 @@
 
 /* Kahan (1965) compensated addition: the error of each float addition is kept
  * in comp and fed back, so the sum of a million samples is as exact as one add. */
-inline void kahan_add(float3* sum, float3* comp, float3 x) {
+static inline void kahan_add(float3* sum, float3* comp, float3 x) {
     float3 y = x - *comp;
     float3 t = *sum + y;
     *comp = (t - *sum) - y;
@@ -14,7 +14,7 @@ inline void kahan_add(float3* sum, float3* comp, float3 x) {
 }
 
 /* sRGB transfer function (IEC 61966-2-1). */
-inline float srgb_encode(float x) {
+static inline float srgb_encode(float x) {
     x = clamp(x, 0.0f, 1.0f);
     return x <= 0.0031308f ? 12.92f * x : 1.055f * pow(x, 1.0f / 2.4f) - 0.055f;
 }

@@ -47,7 +47,7 @@ typedef struct {
 #define CLP_SCENE_ALPHA
 #endif
 
-inline int tile_to_pixel(uint i, uint width, uint height, uint* px, uint* py) {
+static inline int tile_to_pixel(uint i, uint width, uint height, uint* px, uint* py) {
     uint tiles_x = (width + CLP_TILE - 1) / CLP_TILE;
     uint tile = i / (CLP_TILE * CLP_TILE), in = i % (CLP_TILE * CLP_TILE);
     *px = (tile % tiles_x) * CLP_TILE + in % CLP_TILE;
@@ -55,11 +55,11 @@ inline int tile_to_pixel(uint i, uint width, uint height, uint* px, uint* py) {
     return *px < width && *py < height;
 }
 
-inline float max3(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
+static inline float max3(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
 
 /* Russian roulette: returns 0 to end the path, else divides the throughput by
  * the survival probability, which keeps the estimate unbiased. */
-inline int russian_roulette(constant const FrameParams* fp, uint depth, float3* beta, Rng* rng) {
+static inline int russian_roulette(constant const FrameParams* fp, uint depth, float3* beta, Rng* rng) {
     float q = 1.0f;
     if (fp->rr_rule == CLP_RR_THROUGHPUT && depth >= fp->rr_min_depth)
         q = fmin(max3(*beta), 1.0f);
@@ -91,7 +91,8 @@ typedef struct {
 #define surface_material(s) ((s)->m)
 #endif
 
-inline Surface surface_at(const SceneData* sc, const Hit* h, float3 d) {
+/* The surface a hit found, written to *out (not returned: see no_hit in traverse_leaf.cl). */
+static inline void surface_at(Surface* out, const SceneData* sc, const Hit* h, float3 d) {
     Surface s;
     s.tv = &sc->tris[h->tri];
     float3 v0 = load3g(s.tv->v0), v1 = load3g(s.tv->v1), v2 = load3g(s.tv->v2);
@@ -112,30 +113,36 @@ inline Surface surface_at(const SceneData* sc, const Hit* h, float3 d) {
 #ifdef CLP_SURFACE_PARAMS
     surface_params(&sc->sd, s.m, mi, s.tv, h->b1, h->b2, &s.ns, &s.mat);
 #endif
-    return s;
+    *out = s;
 }
 
 /* Any hit between o and o + d * tmax (d need not be unit). */
-inline int occluded(const SceneData* sc, float3 o, float3 d, float tmax, uint* rays) {
+static inline int occluded(const SceneData* sc, float3 o, float3 d, float tmax, uint* rays) {
     RayPre rp = ray_prepare(o, d);
     ++*rays;
-    return traverse_bvh(sc->nodes, sc->tris, &rp, tmax, 1, 0 CLP_SCENE_ALPHA).tri >= 0;
+    Hit h;
+    traverse_bvh(&h, sc->nodes, sc->tris, &rp, tmax, 1, 0 CLP_SCENE_ALPHA);
+    return h.tri >= 0;
 }
 
-inline Hit trace_closest(const SceneData* sc, Ray ray, uint* rays, uint* visits) {
+static inline void trace_closest(Hit* h, const SceneData* sc, Ray ray, uint* rays, uint* visits) {
     RayPre rp = ray_prepare(ray.o, ray.d);
     ++*rays;
-    return traverse_bvh(sc->nodes, sc->tris, &rp, INFINITY, 0, visits CLP_SCENE_ALPHA);
+    traverse_bvh(h, sc->nodes, sc->tris, &rp, INFINITY, 0, visits CLP_SCENE_ALPHA);
 }
 
 /* ---- path tracing ------------------------------------------------------- */
 
+/* Each integrator's integrate() is forced inline into the kernel on a GPU:
+ * out of line (LLVM's choice for the larger ones) the scene, ray and random
+ * state it is handed by pointer live in the GPU's off-chip stack (176 bytes
+ * more at sm_90 with every feature). */
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH || CLP_INTEGRATOR == CLP_INTEGRATOR_PATH_BSDF
 
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH
 /* Next-event estimation: light sampled at a surface, weighted against BSDF
  * sampling of the same path by the power heuristic (Veach 1997, ch. 9). */
-inline float3 sample_direct(const SceneData* sc, const Surface* s, float3 wo, Rng* rng, uint* rays) {
+static inline float3 sample_direct(const SceneData* sc, const Surface* s, float3 wo, Rng* rng, uint* rays) {
     LightSample ls;
     float u0 = rng_next(rng), u1 = rng_next(rng), u2 = rng_next(rng);
     if (!sample_light(sc->lights, sc->alias, sc->fp, &sc->env, s->p, u0, u1, u2, &ls)) return (float3)(0.0f);
@@ -150,14 +157,15 @@ inline float3 sample_direct(const SceneData* sc, const Surface* s, float3 wo, Rn
 }
 #endif
 
-inline float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
+CLP_GPU_INLINE float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
     constant const FrameParams* fp = sc->fp;
     float3 L = (float3)(0.0f), beta = (float3)(1.0f);
     float prev_pdf = 0.0f;
     float3 prev_p = ray.o; /* the vertex the ray left: light pdfs for MIS are taken from there */
     int prev_delta = 1; /* a camera ray: what it sees directly is never light-sampled */
     for (uint depth = 0;; ++depth) {
-        Hit h = trace_closest(sc, ray, rays, 0);
+        Hit h;
+        trace_closest(&h, sc, ray, rays, 0);
         if (h.tri < 0) {
 #ifdef CLP_HAS_ENV
             float w = 1.0f;
@@ -169,7 +177,8 @@ inline float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
 #endif
             break;
         }
-        Surface s = surface_at(sc, &h, ray.d);
+        Surface s;
+        surface_at(&s, sc, &h, ray.d);
 #ifdef CLP_HAS_EMISSION
         float3 Le = material_emission(surface_material(&s), s.front);
         if (max3(Le) > 0.0f) {
@@ -205,10 +214,12 @@ inline float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
 #elif CLP_INTEGRATOR == CLP_INTEGRATOR_AO
 /* The fraction of the cosine-weighted hemisphere above the first hit that is
  * open within ao_distance: 1 for an open plane, 0 where nothing is hit. */
-inline float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
-    Hit h = trace_closest(sc, ray, rays, 0);
+CLP_GPU_INLINE float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
+    Hit h;
+    trace_closest(&h, sc, ray, rays, 0);
     if (h.tri < 0) return (float3)(0.0f);
-    Surface s = surface_at(sc, &h, ray.d);
+    Surface s;
+    surface_at(&s, sc, &h, ray.d);
     float3 n = s.front ? s.ng : -s.ng;
     float u1 = rng_next(rng), u2 = rng_next(rng);
     float3 wi = to_world(sample_cosine_hemisphere(u1, u2), n);
@@ -220,7 +231,7 @@ inline float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
 
 #else
 /* A blue-green-yellow-red ramp for t in [0, 1]. */
-inline float3 heat_colour(float t) {
+static inline float3 heat_colour(float t) {
     t = clamp(t, 0.0f, 1.0f);
     float3 c0 = (float3)(0.05f, 0.05f, 0.5f), c1 = (float3)(0.0f, 0.7f, 0.9f), c2 = (float3)(0.2f, 0.85f, 0.2f),
            c3 = (float3)(1.0f, 0.9f, 0.0f), c4 = (float3)(0.9f, 0.1f, 0.05f);
@@ -231,14 +242,16 @@ inline float3 heat_colour(float t) {
     return mix(c3, c4, x - 3.0f);
 }
 
-inline float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
+CLP_GPU_INLINE float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
     uint visits = 0;
-    Hit h = trace_closest(sc, ray, rays, &visits);
+    Hit h;
+    trace_closest(&h, sc, ray, rays, &visits);
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_HEATMAP
     return heat_colour((float)visits / CLP_HEATMAP_MAX);
 #else
     if (h.tri < 0) return (float3)(0.0f);
-    Surface s = surface_at(sc, &h, ray.d);
+    Surface s;
+    surface_at(&s, sc, &h, ray.d);
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_NORMALS
     return s.ns * 0.5f + 0.5f;
 #elif CLP_INTEGRATOR == CLP_INTEGRATOR_DEPTH

@@ -20,6 +20,18 @@
 #define CLP_MIN(a, b) select((b), (a), (a) < (b))
 #define CLP_MAX(a, b) select((b), (a), (a) > (b))
 
+/* Component k (0, 1 or 2) of v, bit for bit, chosen by masks. On a GPU an
+ * indexed private array lives in off-chip local memory, and LLVM turns a
+ * chain of compares and selects on k back into a variable index of the
+ * vector, which ends there too; masks stay in registers. CPUs keep the
+ * indexed copy (ray_prepare, intersect_triangle), which PoCL does fastest. */
+#ifdef CLP_TARGET_GPU
+static inline float component3(float3 v, int k) {
+    return as_float((as_uint(v.x) & (k == 0 ? ~0u : 0u)) | (as_uint(v.y) & (k == 1 ? ~0u : 0u)) |
+                    (as_uint(v.z) & (k == 2 ? ~0u : 0u)));
+}
+#endif
+
 typedef struct {
     float3 org;
     float3 dir;
@@ -37,7 +49,7 @@ typedef struct {
 /* Per ray, once: every division is one vector division, and the axes are
  * picked by indexing a private copy of d rather than by chains of compares
  * and selects (the same correctly rounded quotients as one by one). */
-inline RayPre ray_prepare(float3 o, float3 d) {
+static inline RayPre ray_prepare(float3 o, float3 d) {
     RayPre r;
     r.org = o;
     r.dir = d;
@@ -52,9 +64,13 @@ inline RayPre ray_prepare(float3 o, float3 d) {
     int kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
     int kx = kz == 2 ? 0 : kz + 1;
     int ky = kx == 2 ? 0 : kx + 1;
+#ifdef CLP_TARGET_GPU
+    float dz = component3(d, kz);
+#else
     float da[3];
     vstore3(d, 0, da);
     float dz = da[kz];
+#endif
     if (dz < 0.0f) {
         int t = kx;
         kx = ky;
@@ -63,7 +79,11 @@ inline RayPre ray_prepare(float3 o, float3 d) {
     r.kx = kx;
     r.ky = ky;
     r.kz = kz;
+#ifdef CLP_TARGET_GPU
+    float3 s = (float3)(component3(d, kx), component3(d, ky), 1.0f) / dz;
+#else
     float3 s = (float3)(da[kx], da[ky], 1.0f) / dz;
+#endif
     r.sx = s.x;
     r.sy = s.y;
     r.sz = s.z;
@@ -81,7 +101,7 @@ inline RayPre ray_prepare(float3 o, float3 d) {
  * the dot's products and sums: gamma(8); gamma(10) also covers the
  * rounding of the bound itself): a few ulps of |o - v0|, not of the triangle's
  * extent in the sheared frame. */
-inline int origin_clearly_in_front(const RayPre* r, float3 v0, float3 v1, float3 v2) {
+static inline int origin_clearly_in_front(const RayPre* r, float3 v0, float3 v1, float3 v2) {
 #pragma OPENCL FP_CONTRACT OFF
     float3 e1 = v1 - v0, e2 = v2 - v0, w = r->org - v0;
     float3 n = (float3)(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x);
@@ -95,8 +115,9 @@ inline int origin_clearly_in_front(const RayPre* r, float3 v0, float3 v1, float3
 
 /* Watertight ray/triangle test. On a hit in (0, tmax) returns 1 and writes t and
  * the barycentric weights (b1, b2) of v1 and v2. */
-__attribute__((always_inline)) inline int intersect_triangle(const RayPre* r, float3 v0, float3 v1, float3 v2,
-                                                             float tmax, float* t_out, float* b1_out, float* b2_out) {
+__attribute__((always_inline)) static inline int intersect_triangle(const RayPre* r, float3 v0, float3 v1, float3 v2,
+                                                                    float tmax, float* t_out, float* b1_out,
+                                                                    float* b2_out) {
     /* Fused multiply-adds would round the two triangles sharing an edge
      * differently, and a ray could then miss both (Woop et al., section 4). */
 #pragma OPENCL FP_CONTRACT OFF
@@ -104,6 +125,12 @@ __attribute__((always_inline)) inline int intersect_triangle(const RayPre* r, fl
      * (subtraction is per component). The permutation is an indexed read of
      * a private array, a store and three loads, where picking each component
      * by comparing k took two compares and two selects. */
+#ifdef CLP_TARGET_GPU
+    const float3 va = v0 - r->org, vb = v1 - r->org, vc = v2 - r->org;
+    float3 A = (float3)(component3(va, r->kx), component3(va, r->ky), component3(va, r->kz));
+    float3 B = (float3)(component3(vb, r->kx), component3(vb, r->ky), component3(vb, r->kz));
+    float3 C = (float3)(component3(vc, r->kx), component3(vc, r->ky), component3(vc, r->kz));
+#else
     float va[3], vb[3], vc[3];
     vstore3(v0 - r->org, 0, va);
     vstore3(v1 - r->org, 0, vb);
@@ -111,6 +138,7 @@ __attribute__((always_inline)) inline int intersect_triangle(const RayPre* r, fl
     float3 A = (float3)(va[r->kx], va[r->ky], va[r->kz]);
     float3 B = (float3)(vb[r->kx], vb[r->ky], vb[r->kz]);
     float3 C = (float3)(vc[r->kx], vc[r->ky], vc[r->kz]);
+#endif
     float sxaz = r->sx * A.z, syaz = r->sy * A.z;
     float sxbz = r->sx * B.z, sybz = r->sy * B.z;
     float sxcz = r->sx * C.z, sycz = r->sy * C.z;
@@ -177,7 +205,7 @@ __attribute__((always_inline)) inline int intersect_triangle(const RayPre* r, fl
  * of the zero. (Without this, rays in a coordinate plane through a vertex leak
  * between the boxes on both sides of the plane.)
  * Returns the entry distance, or +INFINITY for a miss. */
-inline float intersect_box(const RayPre* r, float3 lo, float3 hi, float tmax) {
+static inline float intersect_box(const RayPre* r, float3 lo, float3 hi, float tmax) {
     float3 t0 = (lo - r->org) * r->inv_dir;
     float3 t1 = (hi - r->org) * r->inv_dir;
     t0 = select(t0, -t1, isnan(t0));
@@ -199,7 +227,7 @@ inline float intersect_box(const RayPre* r, float3 lo, float3 hi, float tmax) {
  * origin in it, see intersect_box4) stands first against a partial result
  * that is never NaN (the chains start from 0 and tmax), so it bounds nothing,
  * as with fmin/fmax. */
-inline float4 slab_entry4(float4 nx, float4 ny, float4 nz, float4 fx, float4 fy, float4 fz, float tmax) {
+static inline float4 slab_entry4(float4 nx, float4 ny, float4 nz, float4 fx, float4 fy, float4 fz, float tmax) {
     float4 tnear = CLP_MAX(nx, CLP_MAX(ny, CLP_MAX(nz, (float4)(0.0f))));
     float4 tfar = CLP_MIN(fx, CLP_MIN(fy, CLP_MIN(fz, (float4)(tmax)))) * (1.0f + 2.0f * CLP_GAMMA(5));
     return select((float4)(INFINITY), tnear, tnear <= tfar);
@@ -209,7 +237,7 @@ inline float4 slab_entry4(float4 nx, float4 ny, float4 nz, float4 fx, float4 fy,
  * coordinate: lane by lane the same slab distances, the same NaN repair and
  * the same conservative widening, so the same boxes are entered at the same
  * distances. */
-inline float4 intersect_box4(const RayPre* r, float4 lo_x, float4 hi_x, float4 lo_y, float4 hi_y, float4 lo_z,
+static inline float4 intersect_box4(const RayPre* r, float4 lo_x, float4 hi_x, float4 lo_y, float4 hi_y, float4 lo_z,
                              float4 hi_z, float tmax) {
     float4 t0x = (lo_x - r->org.x) * r->inv_dir.x, t1x = (hi_x - r->org.x) * r->inv_dir.x;
     float4 t0y = (lo_y - r->org.y) * r->inv_dir.y, t1y = (hi_y - r->org.y) * r->inv_dir.y;
@@ -242,7 +270,7 @@ typedef struct {
     int near_x, near_y, near_z;
 } RayBox4;
 
-inline RayBox4 ray_box4(const RayPre* r) {
+static inline RayBox4 ray_box4(const RayPre* r) {
     RayBox4 b;
     b.ox = (float4)(r->org.x);
     b.oy = (float4)(r->org.y);
@@ -262,7 +290,7 @@ inline RayBox4 ray_box4(const RayPre* r) {
  * also after rounding (rounding is monotonic), so the per-axis min and max of
  * intersect_box4 are known in advance: the same distances, bit for bit, with
  * twelve compares and selects fewer. */
-inline float4 intersect_box4_ordered(const RayBox4* b, global const float4* n, float tmax) {
+static inline float4 intersect_box4_ordered(const RayBox4* b, global const float4* n, float tmax) {
     return slab_entry4((n[b->near_x] - b->ox) * b->ix, (n[b->near_y] - b->oy) * b->iy,
                        (n[b->near_z] - b->oz) * b->iz, (n[b->near_x ^ 1] - b->ox) * b->ix,
                        (n[b->near_y ^ 1] - b->oy) * b->iy, (n[b->near_z ^ 1] - b->oz) * b->iz, tmax);
@@ -284,7 +312,7 @@ inline float4 intersect_box4_ordered(const RayBox4* b, global const float4* n, f
  * without contraction). On an axis-aligned face both vanish along its
  * normal, and the point is exactly in the plane; elsewhere the bound is at
  * most half an ulp of |p| more than the triangle's own rounding. */
-inline float3 hit_point(float3 v0, float3 v1, float3 v2, float b1, float b2, float3* err) {
+static inline float3 hit_point(float3 v0, float3 v1, float3 v2, float b1, float b2, float3* err) {
 #pragma OPENCL FP_CONTRACT OFF
     float3 e1 = v1 - v0, e2 = v2 - v0;
     float3 b1e1 = b1 * e1, b2e2 = b2 * e2;
@@ -298,14 +326,14 @@ inline float3 hit_point(float3 v0, float3 v1, float3 v2, float b1, float b2, flo
     return p;
 }
 
-inline float next_float_away(float x, float dir_sign) {
+static inline float next_float_away(float x, float dir_sign) {
     return dir_sign > 0.0f ? nextafter(x, INFINITY) : (dir_sign < 0.0f ? nextafter(x, -INFINITY) : x);
 }
 
 /* Origin for a ray leaving a surface at p towards w: moved along the normal
  * past the error box around p, then rounded away from the surface, so that the
  * new ray cannot re-hit the surface it left, at any scale (PBR 4th ed., 6.8.6). */
-inline float3 offset_ray_origin(float3 p, float3 err, float3 n, float3 w) {
+static inline float3 offset_ray_origin(float3 p, float3 err, float3 n, float3 w) {
     float d = dot(fabs(n), err);
     float3 offset = d * n;
     if (dot(w, n) < 0.0f) offset = -offset;

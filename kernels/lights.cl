@@ -22,13 +22,13 @@ typedef struct {
     global const float* cdf;
 } EnvMap;
 
-inline float3 env_rotate(constant const FrameParams* fp, float3 d, float sign) {
+static inline float3 env_rotate(constant const FrameParams* fp, float3 d, float sign) {
     float c = fp->env_rot_cos, s = fp->env_rot_sin * sign;
     return (float3)(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
 }
 
 #ifdef CLP_HAS_ENV_MAP
-inline uint env_texel(constant const FrameParams* fp, float3 d, float* sin_theta) {
+static inline uint env_texel(constant const FrameParams* fp, float3 d, float* sin_theta) {
     d = env_rotate(fp, d, 1.0f);
     float u = 0.5f + atan2(d.x, -d.z) * (0.5f * CLP_INV_PI);
     float v = acos(clamp(d.y, -1.0f, 1.0f)) * CLP_INV_PI;
@@ -40,7 +40,7 @@ inline uint env_texel(constant const FrameParams* fp, float3 d, float* sin_theta
 #endif
 
 /* Radiance arriving along -d from infinitely far. */
-inline float3 env_radiance(constant const FrameParams* fp, const EnvMap* env, float3 d) {
+static inline float3 env_radiance(constant const FrameParams* fp, const EnvMap* env, float3 d) {
 #ifdef CLP_HAS_ENV_MAP
     if (fp->env_width) {
         float st;
@@ -51,7 +51,7 @@ inline float3 env_radiance(constant const FrameParams* fp, const EnvMap* env, fl
 }
 
 /* Index i with cdf[i] <= u < cdf[i+1] among n intervals (cdf[0] = 0, cdf[n] = 1). */
-inline uint cdf_find(global const float* cdf, uint n, float u) {
+static inline uint cdf_find(global const float* cdf, uint n, float u) {
     uint lo = 0, hi = n;
     while (hi - lo > 1) {
         uint mid = (lo + hi) / 2;
@@ -61,7 +61,7 @@ inline uint cdf_find(global const float* cdf, uint n, float u) {
 }
 
 /* Solid-angle pdf of env_sample_direction choosing d. */
-inline float env_pdf(constant const FrameParams* fp, const EnvMap* env, float3 d) {
+static inline float env_pdf(constant const FrameParams* fp, const EnvMap* env, float3 d) {
 #ifdef CLP_HAS_ENV_MAP
     if (fp->env_width && CLP_ENV_IS_SAMPLED(env->cdf[0])) {
         uint w = fp->env_width, h = fp->env_height;
@@ -79,7 +79,7 @@ inline float env_pdf(constant const FrameParams* fp, const EnvMap* env, float3 d
 /* A direction towards the environment: by the image's luminance (pbrt's
  * piecewise-constant 2D distribution) or, for a constant colour or when not
  * importance sampled (CLP_ENV_NOT_SAMPLED), uniformly on the sphere. */
-inline float3 env_sample_direction(constant const FrameParams* fp, const EnvMap* env, float u1, float u2) {
+static inline float3 env_sample_direction(constant const FrameParams* fp, const EnvMap* env, float u1, float u2) {
 #ifdef CLP_HAS_ENV_MAP
     if (fp->env_width && CLP_ENV_IS_SAMPLED(env->cdf[0])) {
         uint w = fp->env_width, h = fp->env_height;
@@ -103,7 +103,7 @@ inline float3 env_sample_direction(constant const FrameParams* fp, const EnvMap*
 
 /* ---- picking and sampling ----------------------------------------------- */
 
-inline uint pick_light(global const AliasEntry* alias, uint n, float u) {
+static inline uint pick_light(global const AliasEntry* alias, uint n, float u) {
     float x = u * (float)n;
     uint i = min((uint)x, n - 1);
     return (x - (float)i) < alias[i].prob ? i : alias[i].alias;
@@ -144,7 +144,7 @@ typedef struct {
  * angle, else 0; n is the triangle's unit normal and area2 twice its area.
  * The unit directions towards the vertices go to *ua, *ub, *uc, for the
  * sampling to reuse. */
-inline float triangle_solid_angle_dirs(float3 a, float3 b, float3 c, float3 n, float area2, float3 p, float3* ua,
+static inline float triangle_solid_angle_dirs(float3 a, float3 b, float3 c, float3 n, float area2, float3 p, float3* ua,
                                        float3* ub, float3* uc) {
     float3 da = a - p, db = b - p, dc = c - p;
     float d2 = fmin(dot(da, da), fmin(dot(db, db), dot(dc, dc)));
@@ -160,14 +160,14 @@ inline float triangle_solid_angle_dirs(float3 a, float3 b, float3 c, float3 n, f
 }
 
 /* The same, for the pdf of a direction (MIS). */
-inline float triangle_sampled_solid_angle(float3 a, float3 b, float3 c, float3 p) {
+static inline float triangle_sampled_solid_angle(float3 a, float3 b, float3 c, float3 p) {
     float3 ua, ub, uc, n = cross(b - a, c - a);
     return triangle_solid_angle_dirs(a, b, c, normalize3(n), length3(n), p, &ua, &ub, &uc);
 }
 
 /* Solid-angle pdf (without the pick) of sampling, from p, the point at
  * distance dist along unit direction d on triangle light l. */
-inline float triangle_sample_pdf(global const Light* l, float3 p, float3 d, float dist) {
+static inline float triangle_sample_pdf(global const Light* l, float3 p, float3 d, float dist) {
     float3 a = load3g(l->a), b = load3g(l->b), c = load3g(l->c);
     float omega = triangle_sampled_solid_angle(a, b, c, p);
     if (omega > 0.0f) return 1.0f / omega;
@@ -181,14 +181,14 @@ inline float triangle_sample_pdf(global const Light* l, float3 p, float3 d, floa
 /* Solid-angle pdf of reaching, by light sampling from p, triangle light li at
  * distance dist along a ray of direction d. For MIS when a BSDF-sampled ray
  * hits it. */
-inline float triangle_light_pdf(global const Light* lights, global const AliasEntry* alias, uint li, float3 p,
+static inline float triangle_light_pdf(global const Light* lights, global const AliasEntry* alias, uint li, float3 p,
                                 float3 d, float dist) {
     return alias[li].pmf * triangle_sample_pdf(&lights[li], p, d, dist);
 }
 
 /* A point on triangle light l as seen from p (radiance, direction, pdf without
  * the pick, shadow-ray end). Returns 0 when it gives nothing. */
-inline int sample_triangle_light(global const Light* l, float3 p, float u1, float u2, LightSample* s) {
+static inline int sample_triangle_light(global const Light* l, float3 p, float u1, float u2, LightSample* s) {
     float3 a = load3g(l->a), b = load3g(l->b), c = load3g(l->c);
     float3 n = cross(b - a, c - a);
     float area2 = length3(n);
@@ -235,7 +235,7 @@ inline int sample_triangle_light(global const Light* l, float3 p, float u1, floa
 }
 
 /* Samples a light as seen from p. Returns 0 when it gives nothing. */
-inline int sample_light(global const Light* lights, global const AliasEntry* alias, constant const FrameParams* fp,
+static inline int sample_light(global const Light* lights, global const AliasEntry* alias, constant const FrameParams* fp,
                         const EnvMap* env, float3 p, float u0, float u1, float u2, LightSample* s) {
     uint li = pick_light(alias, fp->light_count, u0);
     global const Light* l = &lights[li];
@@ -287,7 +287,7 @@ inline int sample_light(global const Light* lights, global const AliasEntry* ali
 }
 
 /* Multiple importance sampling, Veach's power heuristic (beta = 2). */
-inline float power_heuristic(float pdf_a, float pdf_b) {
+static inline float power_heuristic(float pdf_a, float pdf_b) {
     if (!(pdf_a > 0.0f)) return 0.0f;
     float r = pdf_b / pdf_a; /* as a ratio: squares of large pdfs would overflow */
     return 1.0f / (1.0f + r * r);

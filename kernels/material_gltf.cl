@@ -26,24 +26,24 @@
 
 #ifdef CLP_HAS_MAT_GLTF
 
-inline float gltf_alpha(CLP_MAT_SPACE const Material* m) { return fmax(m->roughness * m->roughness, CLP_SMOOTH_ALPHA); }
+static inline float gltf_alpha(CLP_MAT_SPACE const Material* m) { return fmax(m->roughness * m->roughness, CLP_SMOOTH_ALPHA); }
 
 /* Reflectance at normal incidence of the dielectric layer. */
-inline float gltf_f0(CLP_MAT_SPACE const Material* m) {
+static inline float gltf_f0(CLP_MAT_SPACE const Material* m) {
     float r = (m->ior - 1.0f) / (m->ior + 1.0f);
     return r * r;
 }
 
-inline float schlick1(float f0, float c) {
+static inline float schlick1(float f0, float c) {
     float x = clamp(1.0f - c, 0.0f, 1.0f);
     float x2 = x * x;
     return f0 + (1.0f - f0) * x2 * x2 * x;
 }
 
-inline float gltf_luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+static inline float gltf_luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 /* Probability of sampling the specular lobe for this wo. */
-inline float gltf_specular_probability(CLP_MAT_SPACE const Material* m, float3 wo) {
+static inline float gltf_specular_probability(CLP_MAT_SPACE const Material* m, float3 wo) {
     float3 base = CLP_M3(m->albedo);
     float metal = clamp(m->metallic, 0.0f, 1.0f);
     float fd = schlick1(gltf_f0(m), wo.z);
@@ -52,7 +52,7 @@ inline float gltf_specular_probability(CLP_MAT_SPACE const Material* m, float3 w
     return spec + diff > 0.0f ? spec / (spec + diff) : 1.0f;
 }
 
-float3 gltf_eval(CLP_MAT_SPACE const Material* m, float3 wo, float3 wi, float* pdf) {
+static float3 gltf_eval(CLP_MAT_SPACE const Material* m, float3 wo, float3 wi, float* pdf) {
     *pdf = 0.0f;
     if (wo.z <= 0.0f || wi.z <= 0.0f) return (float3)(0.0f);
     float alpha = gltf_alpha(m);
@@ -71,7 +71,7 @@ float3 gltf_eval(CLP_MAT_SPACE const Material* m, float3 wo, float3 wi, float* p
     return metal * f_metal + (1.0f - metal) * (f_base + (float3)(f_coat));
 }
 
-int gltf_sample(CLP_MAT_SPACE const Material* m, float3 wo, float u1, float u2, float u3, float3* wi) {
+static int gltf_sample(CLP_MAT_SPACE const Material* m, float3 wo, float u1, float u2, float u3, float3* wi) {
     if (wo.z <= 0.0f) return 0;
     if (u3 < gltf_specular_probability(m, wo)) {
         float3 h = ggx_sample_visible_normal(wo, gltf_alpha(m), u1, u2);

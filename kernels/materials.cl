@@ -20,12 +20,12 @@
 
 /* Radiance emitted towards a ray that hit the surface from the front
  * (front = the side the triangle's winding faces) or the back. */
-inline float3 material_emission(CLP_MAT_SPACE const Material* m, int front) {
+static inline float3 material_emission(CLP_MAT_SPACE const Material* m, int front) {
     if (!front && !(m->flags & CLP_MATF_TWO_SIDED_EMISSION)) return (float3)(0.0f);
     return CLP_M3(m->emission);
 }
 
-inline int material_scatters(CLP_MAT_SPACE const Material* m) {
+static inline int material_scatters(CLP_MAT_SPACE const Material* m) {
     return m->kind != CLP_MAT_DIFFUSE || m->albedo[0] > 0.0f || m->albedo[1] > 0.0f || m->albedo[2] > 0.0f;
 }
 
@@ -33,10 +33,10 @@ inline int material_scatters(CLP_MAT_SPACE const Material* m) {
  * smooth surface: the GGX lobe would be narrower than float can represent. */
 #define CLP_SMOOTH_ALPHA 1e-3f
 
-inline float ggx_alpha(CLP_MAT_SPACE const Material* m) { return m->roughness * m->roughness; }
+static inline float ggx_alpha(CLP_MAT_SPACE const Material* m) { return m->roughness * m->roughness; }
 
 /* Materials whose scattering is a Dirac delta: no light sampling, no MIS. */
-inline int material_is_delta(CLP_MAT_SPACE const Material* m) {
+static inline int material_is_delta(CLP_MAT_SPACE const Material* m) {
     switch (m->kind) {
 #ifdef CLP_HAS_MAT_MIRROR
     case CLP_MAT_MIRROR: return 1;
@@ -57,16 +57,16 @@ typedef struct {
     float3 t, b, n;
 } Frame;
 
-inline Frame frame_about(float3 n) {
+static inline Frame frame_about(float3 n) {
     Frame f;
     f.n = n;
     make_frame(n, &f.t, &f.b);
     return f;
 }
-inline float3 to_local(const Frame* f, float3 v) { return (float3)(dot(v, f->t), dot(v, f->b), dot(v, f->n)); }
-inline float3 from_local(const Frame* f, float3 v) { return v.x * f->t + v.y * f->b + v.z * f->n; }
+static inline float3 to_local(const Frame* f, float3 v) { return (float3)(dot(v, f->t), dot(v, f->b), dot(v, f->n)); }
+static inline float3 from_local(const Frame* f, float3 v) { return v.x * f->t + v.y * f->b + v.z * f->n; }
 
-inline float3 schlick_fresnel(float3 f0, float cos_theta) {
+static inline float3 schlick_fresnel(float3 f0, float cos_theta) {
     float m = clamp(1.0f - cos_theta, 0.0f, 1.0f);
     float m2 = m * m;
     return f0 + ((float3)(1.0f) - f0) * (m2 * m2 * m);
@@ -75,7 +75,7 @@ inline float3 schlick_fresnel(float3 f0, float cos_theta) {
 /* Unpolarised Fresnel reflectance of a dielectric interface. cos_i > 0 on the
  * side the light comes from; eta = n_transmitted / n_incident. 1 under total
  * internal reflection. (PBR 4th ed., 9.3.) */
-inline float fresnel_dielectric(float cos_i, float eta) {
+static inline float fresnel_dielectric(float cos_i, float eta) {
     cos_i = clamp(cos_i, 0.0f, 1.0f);
     float sin2_t = (1.0f - cos_i * cos_i) / (eta * eta);
     if (sin2_t >= 1.0f) return 1.0f;
@@ -89,27 +89,27 @@ inline float fresnel_dielectric(float cos_i, float eta) {
 /* Walter et al. 2007 for D and Smith's G; the height-correlated masking-
  * shadowing of Heitz 2014; visible-normal sampling of Heitz 2018. */
 
-inline float ggx_d(float3 h, float alpha) {
+static inline float ggx_d(float3 h, float alpha) {
     float a2 = alpha * alpha;
     float c2 = h.z * h.z;
     float d = c2 * (a2 - 1.0f) + 1.0f;
     return a2 / (CLP_PI * d * d);
 }
 
-inline float ggx_lambda(float3 w, float alpha) {
+static inline float ggx_lambda(float3 w, float alpha) {
     float c2 = w.z * w.z;
     if (c2 <= 0.0f) return INFINITY;
     float tan2 = fmax(0.0f, 1.0f - c2) / c2;
     return 0.5f * (sqrt(1.0f + alpha * alpha * tan2) - 1.0f);
 }
 
-inline float ggx_g1(float3 w, float alpha) { return 1.0f / (1.0f + ggx_lambda(w, alpha)); }
-inline float ggx_g2(float3 wo, float3 wi, float alpha) {
+static inline float ggx_g1(float3 w, float alpha) { return 1.0f / (1.0f + ggx_lambda(w, alpha)); }
+static inline float ggx_g2(float3 wo, float3 wi, float alpha) {
     return 1.0f / (1.0f + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha));
 }
 
 /* Normal visible from wo (wo.z > 0), distributed as D_wo(h) = G1(wo) max(0, wo.h) D(h) / wo.z. */
-inline float3 ggx_sample_visible_normal(float3 wo, float alpha, float u1, float u2) {
+static inline float3 ggx_sample_visible_normal(float3 wo, float alpha, float u1, float u2) {
     float3 vh = normalize3((float3)(alpha * wo.x, alpha * wo.y, wo.z));
     float len2 = vh.x * vh.x + vh.y * vh.y;
     float3 t1 = len2 > 0.0f ? (float3)(-vh.y, vh.x, 0.0f) * rsqrt(len2) : (float3)(1.0f, 0.0f, 0.0f);
@@ -123,7 +123,7 @@ inline float3 ggx_sample_visible_normal(float3 wo, float alpha, float u1, float 
 }
 
 /* pdf of wi = reflect(wo, h) when h is a visible normal. */
-inline float ggx_reflection_pdf(float3 wo, float3 h, float alpha) {
+static inline float ggx_reflection_pdf(float3 wo, float3 h, float alpha) {
     float wo_h = dot(wo, h);
     if (wo.z <= 0.0f || wo_h <= 0.0f) return 0.0f;
     return ggx_g1(wo, alpha) * ggx_d(h, alpha) / (4.0f * wo.z);
@@ -137,7 +137,7 @@ inline float ggx_reflection_pdf(float3 wo, float3 h, float alpha) {
  * surface to above and passes eta = n_transmitted / n_incident for that side.
  * Returns f |cos theta_i| and the pdf of sampling wi (Fresnel picks between
  * the lobes); transmitted radiance is scaled by 1/eta^2 as for smooth glass. */
-inline float rough_dielectric_eval(float3 wo, float3 wi, float alpha, float eta, float* pdf) {
+static inline float rough_dielectric_eval(float3 wo, float3 wi, float alpha, float eta, float* pdf) {
     *pdf = 0.0f;
     if (wo.z <= 0.0f || wi.z == 0.0f) return 0.0f;
     int reflect = wi.z > 0.0f;
@@ -164,7 +164,7 @@ inline float rough_dielectric_eval(float3 wo, float3 wi, float alpha, float eta,
 
 /* Samples wi for wo.z > 0 as rough_dielectric_eval describes; *weight is
  * f |cos| / pdf without the tint. Returns 0 when the sample fails. */
-inline int rough_dielectric_sample(float3 wo, float alpha, float eta, float u1, float u2, float u3, float3* wi,
+static inline int rough_dielectric_sample(float3 wo, float alpha, float eta, float u1, float u2, float u3, float3* wi,
                                    float* pdf, float* weight) {
     float3 h = ggx_sample_visible_normal(wo, alpha, u1, u2);
     float wo_h = dot(wo, h);
@@ -188,8 +188,8 @@ inline int rough_dielectric_sample(float3 wo, float alpha, float eta, float u1, 
 
 #ifdef CLP_HAS_MAT_GLTF
 /* The glTF metallic-roughness material, in the local frame (material_gltf.cl). */
-float3 gltf_eval(CLP_MAT_SPACE const Material* m, float3 wo, float3 wi, float* pdf);
-int gltf_sample(CLP_MAT_SPACE const Material* m, float3 wo, float u1, float u2, float u3, float3* wi);
+static float3 gltf_eval(CLP_MAT_SPACE const Material* m, float3 wo, float3 wi, float* pdf);
+static int gltf_sample(CLP_MAT_SPACE const Material* m, float3 wo, float u1, float u2, float u3, float3* wi);
 #endif
 
 /* ---- the BSDF interface ------------------------------------------------- */
@@ -205,7 +205,7 @@ typedef struct {
  * use the shading normal turned to wo's side of the geometric normal; glass
  * keeps the geometric orientation (front = outside) so entering and leaving
  * follow from the geometry, never from a flag carried along the path. */
-inline Frame scatter_frame(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns, float3 wo) {
+static inline Frame scatter_frame(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns, float3 wo) {
 #ifdef CLP_HAS_MAT_DIELECTRIC
     if (m->kind == CLP_MAT_DIELECTRIC) {
         if (dot(ns, ng) < 0.0f) ns = -ns;
@@ -222,7 +222,7 @@ inline Frame scatter_frame(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns
 /* f(wo, wi) |cos theta_i| and the pdf with which material_sample picks wi.
  * Delta lobes evaluate to 0. A reflection whose wi falls below the geometric
  * surface is 0: that light would have come through the triangle. */
-inline float3 material_eval(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns, float3 wo_w, float3 wi_w, float* pdf) {
+static inline float3 material_eval(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns, float3 wo_w, float3 wi_w, float* pdf) {
     *pdf = 0.0f;
     Frame f = scatter_frame(m, ng, ns, wo_w);
     float3 wo = to_local(&f, wo_w), wi = to_local(&f, wi_w);
@@ -265,7 +265,7 @@ inline float3 material_eval(CLP_MAT_SPACE const Material* m, float3 ng, float3 n
 }
 
 /* Samples wi for wo with the numbers u1..u3. Returns 0 when the path ends here. */
-inline int material_sample(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns, float3 wo_w, float u1, float u2, float u3,
+static inline int material_sample(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns, float3 wo_w, float u1, float u2, float u3,
                            BsdfSample* s) {
     Frame f = scatter_frame(m, ng, ns, wo_w);
     float3 wo = to_local(&f, wo_w);
@@ -371,7 +371,7 @@ inline int material_sample(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns
 }
 
 /* What the albedo debug view shows. */
-inline float3 material_albedo(CLP_MAT_SPACE const Material* m) { return CLP_M3(m->albedo); }
+static inline float3 material_albedo(CLP_MAT_SPACE const Material* m) { return CLP_M3(m->albedo); }
 
 /* The glTF material's definitions need the GGX functions above. */
 #include "material_gltf.cl"

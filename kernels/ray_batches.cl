@@ -36,7 +36,7 @@ kernel void batch_primary_rays(constant const CameraData* cam, global BatchRay* 
 
 /* The surface point a primary hit found, with its rounding-error bound and
  * its geometric normal turned towards the ray's side. */
-inline float3 batch_hit_point(global const TriVerts* tris, const BatchRay* r, Hit h, float3* err, float3* n) {
+static inline float3 batch_hit_point(global const TriVerts* tris, const BatchRay* r, Hit h, float3* err, float3* n) {
     global const TriVerts* tv = &tris[h.tri];
     float3 v0 = load3g(tv->v0), v1 = load3g(tv->v1), v2 = load3g(tv->v2);
     float3 ng = normalize3(cross(v1 - v0, v2 - v0));
@@ -85,7 +85,9 @@ kernel void batch_trace_closest(global const AccelNode* nodes, global const TriV
     if (i >= count) return;
     global const BatchRay* r = &rays[i];
     RayPre rp = ray_prepare(load3g(r->o), load3g(r->d));
-    hits[i] = traverse_bvh(nodes, tris, &rp, r->tmax, 0, 0);
+    Hit h;
+    traverse_bvh(&h, nodes, tris, &rp, r->tmax, 0, 0);
+    hits[i] = h;
 }
 
 kernel void batch_trace_any(global const AccelNode* nodes, global const TriVerts* tris, global const BatchRay* rays,
@@ -94,7 +96,9 @@ kernel void batch_trace_any(global const AccelNode* nodes, global const TriVerts
     if (i >= count) return;
     global const BatchRay* r = &rays[i];
     RayPre rp = ray_prepare(load3g(r->o), load3g(r->d));
-    occluder[i] = traverse_bvh(nodes, tris, &rp, r->tmax, 1, 0).tri;
+    Hit h;
+    traverse_bvh(&h, nodes, tris, &rp, r->tmax, 1, 0);
+    occluder[i] = h.tri;
 }
 
 #endif

@@ -12,7 +12,7 @@
 
 /* "lowbias32" from C. Wellons' hash prospector (2018): a bijective 32-bit mixer
  * with very low avalanche bias; bijective, so distinct inputs never collide. */
-inline uint hash_u32(uint x) {
+static inline uint hash_u32(uint x) {
     x ^= x >> 16;
     x *= 0x7feb352du;
     x ^= x >> 15;
@@ -25,7 +25,7 @@ typedef struct {
     uint state;
 } Rng;
 
-inline Rng rng_seed(uint pixel, uint sample, uint seed) {
+static inline Rng rng_seed(uint pixel, uint sample, uint seed) {
     uint h = hash_u32(hash_u32(hash_u32(seed ^ 0x6a09e667u) ^ pixel) ^ sample);
     Rng r;
     r.state = h ? h : 0x9e3779b9u;
@@ -33,7 +33,7 @@ inline Rng rng_seed(uint pixel, uint sample, uint seed) {
 }
 
 /* Marsaglia (2003), xorshift32 with shifts (13, 17, 5): period 2^32 - 1. */
-inline uint rng_next_u32(Rng* r) {
+static inline uint rng_next_u32(Rng* r) {
     uint x = r->state;
     x ^= x << 13;
     x ^= x >> 17;
@@ -43,6 +43,6 @@ inline uint rng_next_u32(Rng* r) {
 }
 
 /* Uniform in [0, 1): the top 24 bits, so every value is exactly representable. */
-inline float rng_next(Rng* r) { return (float)(rng_next_u32(r) >> 8) * 0x1.0p-24f; }
+static inline float rng_next(Rng* r) { return (float)(rng_next_u32(r) >> 8) * 0x1.0p-24f; }
 
 #endif

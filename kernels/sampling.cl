@@ -9,7 +9,7 @@
 
 /* Orthonormal basis around a unit vector n, without the singularity of the
  * cross-product method: Duff et al. 2017, "Building an Orthonormal Basis, Revisited". */
-inline void make_frame(float3 n, float3* t, float3* b) {
+static inline void make_frame(float3 n, float3* t, float3* b) {
     float s = n.z >= 0.0f ? 1.0f : -1.0f;
     float a = -1.0f / (s + n.z);
     float c = n.x * n.y * a;
@@ -19,7 +19,7 @@ inline void make_frame(float3 n, float3* t, float3* b) {
 
 /* Uniform point on the unit disk by Shirley & Chiu's (1997) concentric map,
  * which keeps strata compact (less distortion than the polar map). */
-inline float2 sample_concentric_disk(float u1, float u2) {
+static inline float2 sample_concentric_disk(float u1, float u2) {
     float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
     if (a == 0.0f && b == 0.0f) return (float2)(0.0f, 0.0f);
     /* The angle in units of pi, for sinpi and cospi: their argument needs no
@@ -38,29 +38,29 @@ inline float2 sample_concentric_disk(float u1, float u2) {
 
 /* Cosine-weighted direction about +z (Malley's method: lift a uniform disk
  * point to the hemisphere). pdf = cos(theta) / pi. */
-inline float3 sample_cosine_hemisphere(float u1, float u2) {
+static inline float3 sample_cosine_hemisphere(float u1, float u2) {
     float2 d = sample_concentric_disk(u1, u2);
     float z = sqrt(fmax(0.0f, 1.0f - d.x * d.x - d.y * d.y));
     return (float3)(d.x, d.y, z);
 }
 
-inline float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.0f ? cos_theta * CLP_INV_PI : 0.0f; }
+static inline float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.0f ? cos_theta * CLP_INV_PI : 0.0f; }
 
 /* Uniform direction on the hemisphere about +z. pdf = 1 / (2 pi). */
-inline float3 sample_uniform_hemisphere(float u1, float u2) {
+static inline float3 sample_uniform_hemisphere(float u1, float u2) {
     float z = u1;
     float r = sqrt(fmax(0.0f, 1.0f - z * z));
     float phi_pi = 2.0f * u2; /* in units of pi, as in sample_concentric_disk */
     return (float3)(r * cospi(phi_pi), r * sinpi(phi_pi), z);
 }
 
-inline float uniform_hemisphere_pdf(float cos_theta) { return cos_theta > 0.0f ? 0.5f * CLP_INV_PI : 0.0f; }
+static inline float uniform_hemisphere_pdf(float cos_theta) { return cos_theta > 0.0f ? 0.5f * CLP_INV_PI : 0.0f; }
 
 /* The direction a diffuse bounce takes about +z, and its pdf: cosine-weighted
  * by default; uniform with -DCLP_UNIFORM_HEMISPHERE (the thesis text's choice,
  * kept so that the convergence benchmark can measure what cosine weighting
  * gains). Sample and pdf are chosen together here, so they cannot disagree. */
-inline float3 sample_diffuse_hemisphere(float u1, float u2) {
+static inline float3 sample_diffuse_hemisphere(float u1, float u2) {
 #ifdef CLP_UNIFORM_HEMISPHERE
     return sample_uniform_hemisphere(u1, u2);
 #else
@@ -68,7 +68,7 @@ inline float3 sample_diffuse_hemisphere(float u1, float u2) {
 #endif
 }
 
-inline float diffuse_hemisphere_pdf(float cos_theta) {
+static inline float diffuse_hemisphere_pdf(float cos_theta) {
 #ifdef CLP_UNIFORM_HEMISPHERE
     return uniform_hemisphere_pdf(cos_theta);
 #else
@@ -76,7 +76,7 @@ inline float diffuse_hemisphere_pdf(float cos_theta) {
 #endif
 }
 
-inline float3 to_world(float3 v, float3 n) {
+static inline float3 to_world(float3 v, float3 n) {
     float3 t, b;
     make_frame(n, &t, &b);
     return v.x * t + v.y * b + v.z * n;
@@ -90,7 +90,7 @@ inline float3 to_world(float3 v, float3 n) {
  * multiply-adds. Then atan(y/x) = pi/2 - atan(x/y) above the diagonal, and pi
  * minus that for x < 0. tests/kernels/sampling_test.cpp checks the relative
  * error against double precision and derives its bound. */
-inline float atan2_upper(float y, float x) {
+static inline float atan2_upper(float y, float x) {
     float ax = fabs(x);
     /* Compares, not fmin/fmax, so a NaN operand reaches r. */
     float lo = y < ax ? y : ax, hi = y < ax ? ax : y;
@@ -113,13 +113,13 @@ inline float atan2_upper(float y, float x) {
 /* Solid angle of the spherical triangle of unit vectors a, b, c, by Van
  * Oosterom & Strackee (1983): tan(omega / 2) = |a.(b x c)| / (1 + a.b + b.c + c.a).
  * Unlike the angle-excess formula it does not cancel for small triangles. */
-inline float spherical_triangle_area(float3 a, float3 b, float3 c) {
+static inline float spherical_triangle_area(float3 a, float3 b, float3 c) {
     return 2.0f * atan2_upper(fabs(dot(a, cross(b, c))), 1.0f + dot(a, b) + dot(b, c) + dot(c, a));
 }
 
 /* Unit vector v minus its component along unit vector n, normalised; zero
  * where v is parallel to n (then nothing is added to the component along n). */
-inline float3 orthogonal_part(float3 v, float3 n) {
+static inline float3 orthogonal_part(float3 v, float3 n) {
     float3 w = v - dot(v, n) * n;
     float l = length3(w);
     return l > 0.0f ? w / l : (float3)(0.0f);
@@ -129,7 +129,7 @@ inline float3 orthogonal_part(float3 v, float3 n) {
  * area `area` (unit vectors; area from spherical_triangle_area): Arvo 1995,
  * "Stratified Sampling of Spherical Triangles". u1 picks the sub-triangle
  * (a, b, c') of area u1 * area, u2 the point along the arc from b to c'. */
-inline float3 sample_spherical_triangle(float3 a, float3 b, float3 c, float area, float u1, float u2) {
+static inline float3 sample_spherical_triangle(float3 a, float3 b, float3 c, float area, float u1, float u2) {
     /* alpha: the triangle's angle at a, between the great circles ab and ac. */
     float cos_alpha = clamp(dot(normalize3(cross(a, b)), normalize3(cross(a, c))), -1.0f, 1.0f);
     float sin_alpha = sqrt(fmax(0.0f, 1.0f - cos_alpha * cos_alpha));

@@ -17,7 +17,7 @@
  * tangents when it has them, else derived from how the texture coordinates
  * run across the triangle (constant per triangle). glTF's convention:
  * bitangent = cross(normal, tangent) * sign points along -v (v runs down the image). */
-inline float4 surface_tangent(const SurfaceData* sd, global const TriVerts* tv, float b1, float b2) {
+static inline float4 surface_tangent(const SurfaceData* sd, global const TriVerts* tv, float b1, float b2) {
     uint prim = tv->prim;
     if (sd->flags & CLP_SCENE_TANGENTS) {
         global const float* a = surface_attrs(sd, prim) + surface_tangent_offset(sd);
@@ -35,7 +35,7 @@ inline float4 surface_tangent(const SurfaceData* sd, global const TriVerts* tv, 
     return (float4)(dpdu, dot(cross(n, dpdu), dpdv) > 0.0f ? -1.0f : 1.0f);
 }
 
-inline float3 normal_mapped(const SurfaceData* sd, global const MaterialExt* gm, global const TriVerts* tv, float b1,
+static inline float3 normal_mapped(const SurfaceData* sd, global const MaterialExt* gm, global const TriVerts* tv, float b1,
                             float b2, float2 uv, float3 ns) {
     float3 tn = texture_sample(sd, gm->texture[CLP_TEX_NORMAL], uv, 0).xyz * 2.0f - 1.0f;
     tn.x *= gm->normal_scale;
@@ -53,7 +53,7 @@ inline float3 normal_mapped(const SurfaceData* sd, global const MaterialExt* gm,
 #endif
 
 /* gm is material `mi` of the table (its MaterialExt has the same index). */
-inline void surface_params(const SurfaceData* sd, global const Material* gm, uint mi, global const TriVerts* tv,
+static inline void surface_params(const SurfaceData* sd, global const Material* gm, uint mi, global const TriVerts* tv,
                            float b1, float b2, float3* ns, Material* out) {
     *out = *gm;
     float3 base = CLP_M3(gm->albedo);

@@ -41,11 +41,11 @@ typedef struct {
 
 /* ---- texture lookup ----------------------------------------------------- */
 
-inline float srgb_to_linear(float c) {
+static inline float srgb_to_linear(float c) {
     return c <= 0.04045f ? c * (1.0f / 12.92f) : pow((c + 0.055f) * (1.0f / 1.055f), 2.4f);
 }
 
-inline float4 texel_fetch(const SurfaceData* sd, global const TextureDesc* d, int x, int y, int srgb) {
+static inline float4 texel_fetch(const SurfaceData* sd, global const TextureDesc* d, int x, int y, int srgb) {
     uint i = (uint)y * d->width + (uint)x;
     float4 c;
     if (d->flags & CLP_TEXF_FLOAT) {
@@ -61,7 +61,7 @@ inline float4 texel_fetch(const SurfaceData* sd, global const TextureDesc* d, in
 }
 
 /* A texel index i (any integer) into [0, n) by the wrap mode. */
-inline int wrap_index(int i, int n, uint mode) {
+static inline int wrap_index(int i, int n, uint mode) {
     if (mode == CLP_WRAP_CLAMP) return clamp(i, 0, n - 1);
     if (mode == CLP_WRAP_MIRROR) {
         int p = i % (2 * n);
@@ -74,7 +74,7 @@ inline int wrap_index(int i, int n, uint mode) {
 
 /* A coordinate folded into one period of its wrap mode, so that the texel
  * index below stays a small integer whatever the coordinate's size. */
-inline float wrap_coord(float u, uint mode) {
+static inline float wrap_coord(float u, uint mode) {
     if (!isfinite(u)) return 0.0f;
     if (mode == CLP_WRAP_CLAMP) return clamp(u, 0.0f, 1.0f);
     if (mode == CLP_WRAP_MIRROR) return u - 2.0f * floor(0.5f * u); /* [0, 2): the mirror is in wrap_index */
@@ -82,7 +82,7 @@ inline float wrap_coord(float u, uint mode) {
 }
 
 /* Texture `index` at (u, v), v down (row 0 at v = 0), as glTF defines it. */
-inline float4 texture_sample(const SurfaceData* sd, int index, float2 uv, int srgb) {
+static inline float4 texture_sample(const SurfaceData* sd, int index, float2 uv, int srgb) {
     global const TextureDesc* d = &sd->desc[index];
     uint ws = (d->flags >> CLP_TEXF_WRAP_S_SHIFT) & 3u, wt = (d->flags >> CLP_TEXF_WRAP_T_SHIFT) & 3u;
     int w = (int)d->width, h = (int)d->height;
@@ -104,29 +104,29 @@ inline float4 texture_sample(const SurfaceData* sd, int index, float2 uv, int sr
 
 /* ---- per-vertex attributes ---------------------------------------------- */
 
-inline global const float* surface_attrs(const SurfaceData* sd, uint prim) {
+static inline global const float* surface_attrs(const SurfaceData* sd, uint prim) {
     return sd->attrs + (size_t)prim * sd->attr_stride;
 }
 
-inline float2 surface_uv(const SurfaceData* sd, uint prim, float b1, float b2) {
+static inline float2 surface_uv(const SurfaceData* sd, uint prim, float b1, float b2) {
     if (!(sd->flags & CLP_SCENE_UVS)) return (float2)(0.0f);
     global const float* a = surface_attrs(sd, prim);
     return (1.0f - b1 - b2) * vload2(0, a) + b1 * vload2(1, a) + b2 * vload2(2, a);
 }
 
-inline uint surface_tangent_offset(const SurfaceData* sd) { return (sd->flags & CLP_SCENE_UVS) ? 6u : 0u; }
-inline uint surface_color_offset(const SurfaceData* sd) {
+static inline uint surface_tangent_offset(const SurfaceData* sd) { return (sd->flags & CLP_SCENE_UVS) ? 6u : 0u; }
+static inline uint surface_color_offset(const SurfaceData* sd) {
     return surface_tangent_offset(sd) + ((sd->flags & CLP_SCENE_TANGENTS) ? 12u : 0u);
 }
 
-inline float4 surface_color(const SurfaceData* sd, uint prim, float b1, float b2) {
+static inline float4 surface_color(const SurfaceData* sd, uint prim, float b1, float b2) {
     if (!(sd->flags & CLP_SCENE_COLORS)) return (float4)(1.0f);
     global const float* a = surface_attrs(sd, prim) + surface_color_offset(sd);
     return (1.0f - b1 - b2) * vload4(0, a) + b1 * vload4(1, a) + b2 * vload4(2, a);
 }
 
 /* Coverage of a hit: base colour alpha x texture alpha x vertex colour alpha. */
-inline float surface_alpha(const SurfaceData* sd, global const MaterialExt* m, uint prim, float b1, float b2) {
+static inline float surface_alpha(const SurfaceData* sd, global const MaterialExt* m, uint prim, float b1, float b2) {
     float a = m->alpha;
 #ifdef CLP_HAS_TEXTURES
     if (m->texture[CLP_TEX_BASE] != CLP_NO_TEXTURE)
@@ -150,7 +150,7 @@ typedef struct {
  * BLEND: kept with probability alpha (stochastic coverage: the expected
  * transmittance is 1 - alpha, as alpha blending would give), decided by a
  * hash of the ray and the triangle, so one ray always sees the same thing. */
-inline int alpha_keeps_hit(const AlphaScene* as, uint prim, float b1, float b2, const RayPre* r) {
+static inline int alpha_keeps_hit(const AlphaScene* as, uint prim, float b1, float b2, const RayPre* r) {
     global const MaterialExt* m = &as->sd.material_ext[as->tri_material[prim]];
     if (m->alpha_mode == CLP_ALPHA_OPAQUE) return 1;
     float a = surface_alpha(&as->sd, m, prim, b1, b2);

@@ -1,7 +1,8 @@
 /* Traversal of the scene's acceleration structure. traverse_bvh() is what
  * the integrator and the ray-batch kernels call. A program holds one node
  * layout, each in a file of its own that defines AccelNode (the record the
- * kernels receive), accel_closest_hit() and accel_any_hit():
+ * kernels receive), accel_closest_hit() and accel_any_hit() (traverse_bvh's
+ * contract, without any_hit):
  *   traverse_bvh4.cl  the 4-wide BVH (Bvh4Node128), the default;
  *   traverse_flat.cl  with -DCLP_ACCEL_FLAT, the thesis renderer's flat list
  *                     of object boxes in BvhNode64 records (host/bvh/flat.hpp),
@@ -30,12 +31,15 @@
 #include "traverse_bvh4.cl"
 #include "traverse_flat.cl"
 
-/* The hit of a ray in (0, tmax): the closest, or with any_hit (shadow rays)
- * the first found. *visits (may be NULL) counts nodes fetched. */
-inline Hit traverse_bvh(global const AccelNode* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
-                        int any_hit, uint* visits CLP_ALPHA_PARAM) {
-    if (any_hit) return accel_any_hit(nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
-    return accel_closest_hit(nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
+/* The hit of a ray in (0, tmax), written to *hit: the closest, or with
+ * any_hit (shadow rays) the first found; tri -1 for none. *visits (may be
+ * NULL) counts nodes fetched. */
+static inline void traverse_bvh(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
+                                const RayPre* r, float tmax, int any_hit, uint* visits CLP_ALPHA_PARAM) {
+    if (any_hit)
+        accel_any_hit(hit, nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
+    else
+        accel_closest_hit(hit, nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
 }
 
 #endif

@@ -15,32 +15,34 @@ typedef BvhNode64 AccelNode;
  * a box entered before the closest hit so far has all its triangles tested.
  * The list ends at the first slot whose child is not a leaf. Same contract as
  * traverse_bvh (traverse.cl). */
-inline Hit traverse_flat(global const BvhNode64* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
-                         int any_hit, uint* visits CLP_ALPHA_PARAM) {
-    Hit hit = no_hit(tmax);
+CLP_WALK CLP_WALK_RESULT traverse_flat(CLP_WALK_OUT global const BvhNode64* nodes,
+                                       global const TriVerts* tris, const RayPre* r, float tmax,
+                                       int any_hit, uint* visits CLP_ALPHA_PARAM) {
+    Hit hit;
+    no_hit(&hit, tmax);
     for (int i = 0;; ++i) {
         global const BvhNode64* n = &nodes[i];
         if (visits) ++*visits;
         if (n->child0 >= 0) break;
         if (intersect_box(r, load3g(n->lo0), load3g(n->hi0), hit.t) < INFINITY &&
             leaf_hits(r, tris, (uint)~n->child0, n->count0, &hit, 0 CLP_ALPHA_ARG) && any_hit)
-            return hit;
+            break;
         if (n->child1 >= 0) break;
         if (intersect_box(r, load3g(n->lo1), load3g(n->hi1), hit.t) < INFINITY &&
             leaf_hits(r, tris, (uint)~n->child1, n->count1, &hit, 0 CLP_ALPHA_ARG) && any_hit)
-            return hit;
+            break;
     }
-    return hit;
+    CLP_WALK_RETURN(hit);
 }
 
-inline Hit accel_closest_hit(global const AccelNode* nodes, global const TriVerts* tris, const RayPre* r,
-                             float tmax, uint* visits CLP_ALPHA_PARAM) {
-    return traverse_flat(nodes, tris, r, tmax, 0, visits CLP_ALPHA_ARG);
+static inline void accel_closest_hit(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
+                                     const RayPre* r, float tmax, uint* visits CLP_ALPHA_PARAM) {
+    CLP_WALK_INTO(hit, traverse_flat, nodes, tris, r, tmax, 0, visits CLP_ALPHA_ARG);
 }
 
-inline Hit accel_any_hit(global const AccelNode* nodes, global const TriVerts* tris, const RayPre* r, float tmax,
-                         uint* visits CLP_ALPHA_PARAM) {
-    return traverse_flat(nodes, tris, r, tmax, 1, visits CLP_ALPHA_ARG);
+static inline void accel_any_hit(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
+                                 const RayPre* r, float tmax, uint* visits CLP_ALPHA_PARAM) {
+    CLP_WALK_INTO(hit, traverse_flat, nodes, tris, r, tmax, 1, visits CLP_ALPHA_ARG);
 }
 
 #endif

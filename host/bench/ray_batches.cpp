@@ -11,6 +11,7 @@
 #include "bench/embree_baseline.hpp"
 #include "cl/embedded_sources.hpp"
 #include "cl/program.hpp"
+#include "render/kernel_programs.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -180,15 +181,6 @@ std::size_t count_differing(Context& ctx, const Buffer& out, const std::vector<T
 
 }  // namespace
 
-const std::vector<std::string>& ray_batch_kernel_files() {
-    static const std::vector<std::string> files = {"ray_batches.cl"};
-    return files;
-}
-
-std::string ray_batch_build_options(Accel accel) {
-    return accel == Accel::Flat ? "-cl-std=CL1.2 -DCLP_ACCEL_FLAT" : "-cl-std=CL1.2";
-}
-
 glm::vec3 default_bench_light(const Scene& scene) {
     for (const auto& l : scene.lights)
         if (l.type == PunctualLight::Type::Point) return l.position;
@@ -272,7 +264,8 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     Buffer variant_out;
     if (!o.ab.empty()) variant_out = ctx.buffer(n * sizeof(Hit), CL_MEM_READ_WRITE, "the variant's answers");
 
-    const std::string source = program_source(ray_batch_kernel_files()), options = ray_batch_build_options(o.accel);
+    const ProgramSpec spec = ray_batch_program(o.accel, kernel_shape(ctx.device()));
+    const std::string source = program_source(spec.roots), options = spec.options;
     BuildResult built = build_program(ctx, source, options);
     say(std::string("kernels ") + (built.from_cache ? "loaded from cache" : "compiled") + " in " +
         std::to_string(built.seconds) + " s");
@@ -289,7 +282,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     std::optional<BuildResult> variant;
     std::optional<Kernel> closest_v, any_v;
     if (!o.ab.empty()) {
-        variant = build_program(ctx, variant_source(ray_batch_kernel_files(), o.ab), variant_options(options, o.ab));
+        variant = build_program(ctx, variant_source(spec.roots, o.ab), variant_options(options, o.ab));
         closest_v.emplace(ctx.kernel(variant->program.get(), "batch_trace_closest"));
         any_v.emplace(ctx.kernel(variant->program.get(), "batch_trace_any"));
         say(std::string("variant kernels ") + (variant->from_cache ? "loaded from cache" : "compiled") + " in " +

@@ -118,10 +118,6 @@ struct RayBenchResult {
     std::string embree;                // the baseline's description; empty when it did not run
 };
 
-// The batch kernels' program: these root files (program_source) with these options.
-const std::vector<std::string>& ray_batch_kernel_files();
-std::string ray_batch_build_options(Accel accel);
-
 // The point light a scene is benchmarked with when none is given: its first
 // point light; else just below the area-weighted centre of its emitters (a
 // ceiling lamp); else above the middle of its bounding box.

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "cl/embedded_sources.hpp"
+#include "render/kernel_programs.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -37,8 +38,8 @@ IntegratorProgram::IntegratorProgram(Context& ctx, const SceneSummary& scene, co
 }
 
 void IntegratorProgram::compile() {
-    BuildResult built = build_program(ctx_, variant_source(renderer_kernel_files(), variant_),
-                                      variant_options(build_options(features_), variant_));
+    const ProgramSpec spec = integrator_program(features_, kernel_shape(ctx_.device()));
+    BuildResult built = build_program(ctx_, variant_source(spec.roots, variant_), variant_options(spec.options, variant_));
     render_ = Kernel();
     resolve_ = Kernel();
     program_ = std::move(built.program);

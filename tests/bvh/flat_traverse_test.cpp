@@ -12,6 +12,7 @@
 #include "bvh/accel.hpp"
 #include "bvh/flat.hpp"
 #include "cl/embedded_sources.hpp"
+#include "render/kernel_programs.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/shapes.hpp"
 #include "support/hit_agreement.hpp"
@@ -68,7 +69,8 @@ struct DeviceHits {
 
 DeviceHits trace(const Bvh& structure, Accel accel, const std::vector<BatchRay>& rays) {
     Context& ctx = test::device();
-    BuildResult built = build_program(ctx, program_source(ray_batch_kernel_files()), ray_batch_build_options(accel));
+    const ProgramSpec spec = ray_batch_program(accel, kernel_shape(ctx.device()));
+    BuildResult built = build_program(ctx, program_source(spec.roots), spec.options);
     Kernel closest = ctx.kernel(built.program.get(), "batch_trace_closest");
     Kernel any = ctx.kernel(built.program.get(), "batch_trace_any");
     const std::uint32_t n = std::uint32_t(rays.size());

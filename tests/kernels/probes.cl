@@ -141,10 +141,11 @@ kernel void probe_trace(global const AccelNode* nodes, global const TriVerts* tr
     uint i = get_global_id(0);
     if (i >= count) return;
     RayPre r = ray_prepare(load3g(rays + 6 * i), load3g(rays + 6 * i + 3));
-    Hit h = traverse_bvh(nodes, tris, &r, tmax[i], 0, 0);
+    Hit h, a;
+    traverse_bvh(&h, nodes, tris, &r, tmax[i], 0, 0);
     out_t[i] = h.t;
     out_prim[i] = h.tri >= 0 ? (int)tris[h.tri].prim : -1;
-    Hit a = traverse_bvh(nodes, tris, &r, tmax[i], 1, 0);
+    traverse_bvh(&a, nodes, tris, &r, tmax[i], 1, 0);
     out_any[i] = a.tri >= 0;
 }
 

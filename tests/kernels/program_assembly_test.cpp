@@ -36,7 +36,7 @@ TEST(ProgramAssembly, EveryKernelFileIsTakenOnceWithWhatItIncludes) {
         EXPECT_EQ(starts(src, f), 1) << f;
     // What a file includes comes before the code that follows the #include.
     EXPECT_LT(src.find("#line 1 \"shared_structs.h\""), src.find("inline float3 load3("));
-    EXPECT_LT(src.find("#line 1 \"intersect.cl\""), src.find("inline Hit traverse_bvh("));
+    EXPECT_LT(src.find("#line 1 \"intersect.cl\""), src.find("inline void traverse_bvh("));
     EXPECT_EQ(starts(src, "ray_batches.cl"), 0);
 }
 

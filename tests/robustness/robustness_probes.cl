@@ -43,7 +43,8 @@ kernel void probe_watertight(global const AccelNode* nodes, global const TriVert
         expect = length(target - o) + margin;
     }
     RayPre rp = ray_prepare(o, d);
-    Hit h = traverse_bvh(nodes, tris, &rp, INFINITY, 0, 0);
+    Hit h;
+    traverse_bvh(&h, nodes, tris, &rp, INFINITY, 0, 0);
     if (h.tri < 0 || !(h.t <= expect)) {
         if (atomic_inc(leaks) == 0u) *first_leak = i;
     }

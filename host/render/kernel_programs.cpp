@@ -1,0 +1,196 @@
+#include "render/kernel_programs.hpp"
+
+#include <cstdlib>
+#include <functional>
+#include <map>
+#include <utility>
+
+#include "cl/embedded_sources.hpp"
+#include "util/error.hpp"
+
+namespace clpath {
+namespace {
+
+const char* const kMaterialNames[CLP_MAT_KIND_COUNT] = {"diffuse", "mirror", "conductor", "dielectric", "gltf"};
+
+std::string shape_options(KernelShape shape) { return shape == KernelShape::Gpu ? " -DCLP_TARGET_GPU" : ""; }
+
+// A feature a scene can hold, by name, and how to switch it on.
+struct SceneSwitch {
+    const char* name;
+    std::function<void(SceneFeatures&)> on;
+};
+
+// Every SceneFeatures field (scene_features() sets them; kernel_features()
+// turns them into CLP_HAS_* switches). A field added there and missed here
+// is caught by tests/render/kernel_programs_test.cpp, which checks that
+// switching every feature on gives the all-features program.
+const std::vector<SceneSwitch>& scene_switches() {
+    static const std::vector<SceneSwitch> s = [] {
+        std::vector<SceneSwitch> v;
+        for (std::uint32_t k = 0; k < CLP_MAT_KIND_COUNT; ++k)
+            v.push_back({kMaterialNames[k], [k](SceneFeatures& f) { f.materials[k] = true; }});
+        v.push_back({"emission", [](SceneFeatures& f) { f.emission = true; }});
+        v.push_back({"lights", [](SceneFeatures& f) { f.lights = true; }});
+        v.push_back({"environment", [](SceneFeatures& f) { f.environment = true; }});
+        v.push_back({"environment-map", [](SceneFeatures& f) { f.environment = f.environment_map = true; }});
+        v.push_back({"normals", [](SceneFeatures& f) { f.normals = true; }});
+        v.push_back({"textures", [](SceneFeatures& f) { f.textures = true; }});
+        v.push_back({"vertex-colors", [](SceneFeatures& f) { f.vertex_colors = true; }});
+        v.push_back({"alpha", [](SceneFeatures& f) { f.alpha = true; }});
+        return v;
+    }();
+    return s;
+}
+
+SceneFeatures every_scene_feature() {
+    SceneFeatures f;
+    for (const auto& s : scene_switches()) s.on(f);
+    return f;
+}
+
+SceneFeatures diffuse_only() {
+    SceneFeatures f;
+    f.materials[CLP_MAT_DIFFUSE] = true;
+    return f;
+}
+
+// Programs in order, merged by (roots, options).
+class ProgramList {
+public:
+    explicit ProgramList(KernelShape shape) : shape_(shape) {}
+
+    void add(ProgramSpec p, const std::string& covers) {
+        std::string key;
+        for (const auto& r : p.roots) key += r + "\n";
+        key += p.options;
+        auto it = index_.find(key);
+        if (it != index_.end()) {
+            std::string& c = list_[it->second].covers;
+            c += (c.empty() ? "" : "; ") + covers;
+            return;
+        }
+        p.covers = covers;
+        index_.emplace(key, list_.size());
+        list_.push_back(std::move(p));
+    }
+    // The integrator program of a scene with these features rendered with these settings.
+    void add_render(const std::string& name, const SceneFeatures& scene, const RenderSettings& settings,
+                    const std::string& covers) {
+        ProgramSpec p = integrator_program(kernel_features(scene, settings), shape_);
+        p.name = name;
+        add(std::move(p), covers);
+    }
+    std::vector<ProgramSpec> take() { return std::move(list_); }
+
+private:
+    KernelShape shape_;
+    std::vector<ProgramSpec> list_;
+    std::map<std::string, std::size_t> index_;
+};
+
+}  // namespace
+
+KernelShape kernel_shape(const DeviceInfo& device) {
+    if (const char* forced = std::getenv("CLPATH_KERNEL_SHAPE"); forced && *forced) {
+        try {
+            return parse_kernel_shape(forced);
+        } catch (const UsageError&) {
+            throw UsageError(std::string("CLPATH_KERNEL_SHAPE=") + forced + ": choose gpu or cpu");
+        }
+    }
+    return device.is_gpu ? KernelShape::Gpu : KernelShape::Cpu;
+}
+
+const char* kernel_shape_name(KernelShape shape) { return shape == KernelShape::Gpu ? "gpu" : "cpu"; }
+
+KernelShape parse_kernel_shape(const std::string& name) {
+    if (name == "gpu") return KernelShape::Gpu;
+    if (name == "cpu") return KernelShape::Cpu;
+    throw UsageError("unknown kernel shape '" + name + "' (choose gpu or cpu)");
+}
+
+ProgramSpec integrator_program(const KernelFeatures& features, KernelShape shape) {
+    ProgramSpec p;
+    p.name = std::string(integrator_name(features.integrator));
+    p.roots = renderer_kernel_files();
+    p.options = build_options(features) + shape_options(shape);
+    p.kernels = {"render_paths", "film_resolve"};
+    return p;
+}
+
+ProgramSpec ray_batch_program(Accel accel, KernelShape shape) {
+    ProgramSpec p;
+    p.name = std::string("rays-") + accel_name(accel);
+    p.roots = {"ray_batches.cl"};
+    p.options = std::string(accel == Accel::Flat ? "-cl-std=CL1.2 -DCLP_ACCEL_FLAT" : "-cl-std=CL1.2") +
+                shape_options(shape);
+    p.kernels = {"batch_primary_rays", "batch_secondary_rays", "batch_trace_closest", "batch_trace_any"};
+    return p;
+}
+
+std::vector<ProgramSpec> scene_programs(const NamedSceneFeatures& scene, KernelShape shape) {
+    ProgramList list(shape);
+    list.add_render("scene-" + scene.name, scene.features, scene.settings, "scene " + scene.name);
+    for (Accel a : {Accel::Bvh, Accel::Flat}) list.add(ray_batch_program(a, shape), "bench rays " + scene.name);
+    return list.take();
+}
+
+std::vector<ProgramSpec> covering_programs(const std::vector<NamedSceneFeatures>& scenes, KernelShape shape) {
+    ProgramList list(shape);
+    const RenderSettings defaults;
+    const SceneFeatures all = every_scene_feature();
+    SceneFeatures all_opaque = all;
+    all_opaque.alpha = false;
+
+    // Every integrator with everything compiled in, alpha off and on.
+    for (std::uint32_t i = 0; i < CLP_INTEGRATOR_COUNT; ++i) {
+        RenderSettings s = defaults;
+        s.integrator = i;
+        s.all_features = true;
+        const std::string n = integrator_name(i);
+        list.add_render(n + "-all", all_opaque, s, n + " integrator, every feature");
+        list.add_render(n + "-all-alpha", all, s, n + " integrator, every feature and alpha");
+    }
+    // Each feature alone (over diffuse, which every scene but a one-material one has),
+    // and each material kind alone.
+    const auto& switches = scene_switches();
+    for (std::size_t k = 0; k < switches.size(); ++k) {
+        const SceneSwitch& sw = switches[k];
+        const std::string name = sw.name;
+        SceneFeatures one = diffuse_only();
+        sw.on(one);
+        if (k != CLP_MAT_DIFFUSE) list.add_render("path-diffuse-" + name, one, defaults, "diffuse and " + name);
+        if (k < CLP_MAT_KIND_COUNT) {  // the first switches are the material kinds
+            SceneFeatures kind;
+            sw.on(kind);
+            list.add_render("path-only-" + name, kind, defaults, name + " alone");
+        }
+    }
+    // Every feature a scene can hold, switched on as a scene would: the
+    // program --all-features compiles (tests/render/kernel_programs_test.cpp).
+    list.add_render("path-every-scene-feature", all, defaults, "every scene feature");
+    // The estimator and structure choices that are compiled in.
+    for (const bool everything : {false, true}) {
+        const SceneFeatures f = everything ? all_opaque : diffuse_only();
+        const std::string what = everything ? "all" : "diffuse";
+        RenderSettings flat = defaults;
+        flat.accel = Accel::Flat;
+        list.add_render("path-flat-" + what, f, flat, "flat object list, " + what);
+        RenderSettings uniform = defaults;
+        uniform.hemisphere = kHemisphereUniform;
+        list.add_render("path-uniform-" + what, f, uniform, "uniform hemisphere, " + what);
+        RenderSettings bsdf = defaults;
+        bsdf.integrator = CLP_INTEGRATOR_PATH_BSDF;
+        list.add_render("path-bsdf-" + what, f, bsdf, "BSDF sampling only, " + what);
+    }
+    for (Accel a : {Accel::Bvh, Accel::Flat}) list.add(ray_batch_program(a, shape), "bench rays");
+    for (const auto& sc : scenes)
+        for (auto& p : scene_programs(sc, shape)) {
+            const std::string covers = p.covers;
+            list.add(std::move(p), covers);
+        }
+    return list.take();
+}
+
+}  // namespace clpath

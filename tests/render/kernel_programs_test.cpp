@@ -1,0 +1,138 @@
+// The programs clpath builds (render/kernel_programs.hpp): the covering set
+// the portability gate compiles is made by the functions a render uses, holds
+// every feature switch the kernels test, and each program's options are what
+// the renderer and the ray-batch benchmark pass to the device.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <map>
+#include <regex>
+#include <set>
+#include <string>
+
+#include "cl/embedded_sources.hpp"
+#include "render/kernel_programs.hpp"
+#include "render/settings.hpp"
+#include "scene/scene_loader.hpp"
+#include "util/error.hpp"
+
+using namespace clpath;
+
+namespace {
+
+std::map<std::string, ProgramSpec> by_name(const std::vector<ProgramSpec>& programs) {
+    std::map<std::string, ProgramSpec> m;
+    for (const auto& p : programs) EXPECT_TRUE(m.emplace(p.name, p).second) << "two programs named " << p.name;
+    return m;
+}
+
+bool has_define(const std::string& options, const std::string& name) {
+    return std::regex_search(options, std::regex("(^| )-D" + name + "(=| |$)"));
+}
+
+}  // namespace
+
+TEST(KernelPrograms, ShapesDifferByTheGpuDefineOnly) {
+    KernelFeatures f;
+    f.materials[CLP_MAT_DIFFUSE] = true;
+    const ProgramSpec cpu = integrator_program(f, KernelShape::Cpu), gpu = integrator_program(f, KernelShape::Gpu);
+    EXPECT_EQ(cpu.options, build_options(f));
+    EXPECT_EQ(gpu.options, build_options(f) + " -DCLP_TARGET_GPU");
+    EXPECT_EQ(cpu.roots, renderer_kernel_files());
+    EXPECT_FALSE(has_define(ray_batch_program(Accel::Bvh, KernelShape::Cpu).options, "CLP_TARGET_GPU"));
+    EXPECT_TRUE(has_define(ray_batch_program(Accel::Flat, KernelShape::Gpu).options, "CLP_TARGET_GPU"));
+    EXPECT_TRUE(has_define(ray_batch_program(Accel::Flat, KernelShape::Cpu).options, "CLP_ACCEL_FLAT"));
+}
+
+TEST(KernelPrograms, ShapeFollowsTheDeviceUnlessTheEnvironmentChooses) {
+    DeviceInfo gpu, cpu;
+    gpu.is_gpu = true;
+    cpu.is_cpu = true;
+    const char* before = std::getenv("CLPATH_KERNEL_SHAPE");
+    const std::string saved = before ? before : "";
+    unsetenv("CLPATH_KERNEL_SHAPE");
+    EXPECT_EQ(kernel_shape(gpu), KernelShape::Gpu);
+    EXPECT_EQ(kernel_shape(cpu), KernelShape::Cpu);
+    setenv("CLPATH_KERNEL_SHAPE", "gpu", 1);
+    EXPECT_EQ(kernel_shape(cpu), KernelShape::Gpu);
+    setenv("CLPATH_KERNEL_SHAPE", "cpu", 1);
+    EXPECT_EQ(kernel_shape(gpu), KernelShape::Cpu);
+    setenv("CLPATH_KERNEL_SHAPE", "fpga", 1);
+    EXPECT_THROW(kernel_shape(gpu), UsageError);
+    if (before)
+        setenv("CLPATH_KERNEL_SHAPE", saved.c_str(), 1);
+    else
+        unsetenv("CLPATH_KERNEL_SHAPE");
+}
+
+TEST(KernelPrograms, CoveringSetHasEveryIntegratorEveryFeatureAloneAndBothRayBatchPrograms) {
+    const auto programs = by_name(covering_programs({}, KernelShape::Gpu));
+    for (const auto& name : integrator_names()) {
+        ASSERT_TRUE(programs.count(name + "-all")) << name;
+        ASSERT_TRUE(programs.count(name + "-all-alpha")) << name;
+        EXPECT_TRUE(has_define(programs.at(name + "-all-alpha").options, "CLP_HAS_ALPHA"));
+        EXPECT_FALSE(has_define(programs.at(name + "-all").options, "CLP_HAS_ALPHA"));
+    }
+    for (const char* alone : {"path-only-diffuse", "path-only-mirror", "path-only-gltf", "path-diffuse-textures",
+                              "path-diffuse-alpha", "path-diffuse-environment-map", "path-flat-all",
+                              "path-uniform-diffuse", "path-bsdf-diffuse", "rays-bvh", "rays-flat"})
+        EXPECT_TRUE(programs.count(alone)) << alone;
+    EXPECT_EQ(programs.at("path-only-mirror").options,
+              "-cl-std=CL1.2 -DCLP_HAS_MAT_MIRROR -DCLP_INTEGRATOR=0u -DCLP_MAX_DEPTH=16u -DCLP_TARGET_GPU");
+    for (const auto& [name, p] : programs) EXPECT_TRUE(has_define(p.options, "CLP_TARGET_GPU")) << name;
+}
+
+// Every feature a scene can hold is switched by the covering set's list: all
+// of them on, as a scene would have them, gives the program that
+// --all-features compiles (with alpha). A field added to SceneFeatures that
+// all_features turns on and the list misses fails here.
+TEST(KernelPrograms, EverySceneFeatureOnIsTheAllFeaturesProgram) {
+    const auto programs = covering_programs({}, KernelShape::Cpu);
+    const ProgramSpec* all = nullptr;
+    const ProgramSpec* switched = nullptr;
+    for (const auto& p : programs) {
+        if (p.name == "path-all-alpha") all = &p;
+        if (p.covers.find("every scene feature") != std::string::npos) switched = &p;
+    }
+    ASSERT_TRUE(all && switched);
+    EXPECT_EQ(switched->name, "path-all-alpha") << switched->options << "\nwhere --all-features gives\n"
+                                                << all->options;
+}
+
+// Every CLP_HAS_* switch the kernels test is on in some program of the set and
+// off in another, so both branches of each #ifdef are compiled.
+TEST(KernelPrograms, EverySwitchTheKernelsTestIsCompiledOnAndOff) {
+    std::set<std::string> switches;
+    static const std::regex tested(R"((?:ifdef|ifndef|defined\()\s*\(?(CLP_(?:HAS|ACCEL|UNIFORM|TARGET)_[A-Z_0-9]+))");
+    for (const auto& s : embedded_sources()) {
+        const std::string text = s.text;
+        for (std::sregex_iterator it(text.begin(), text.end(), tested), end; it != end; ++it)
+            switches.insert((*it)[1]);
+    }
+    ASSERT_GE(switches.size(), 14u);
+    const auto gpu = covering_programs({}, KernelShape::Gpu), cpu = covering_programs({}, KernelShape::Cpu);
+    for (const auto& sw : switches) {
+        int on = 0, off = 0;
+        for (const auto* set : {&gpu, &cpu})
+            for (const auto& p : *set) (has_define(p.options, sw) ? on : off)++;
+        EXPECT_GT(on, 0) << sw << " is never compiled in";
+        EXPECT_GT(off, 0) << sw << " is always compiled in";
+    }
+}
+
+TEST(KernelPrograms, AScenesProgramIsTheOneItsRenderBuilds) {
+    const Scene scene = load_scene("cornell");
+    const RenderSettings settings = settings_from_scene(scene.render);
+    const NamedSceneFeatures named{"cornell", scene_features(scene), settings};
+    const auto programs = scene_programs(named, KernelShape::Gpu);
+    ASSERT_EQ(programs.size(), 3u);
+    EXPECT_EQ(programs[0].name, "scene-cornell");
+    EXPECT_EQ(programs[0].options,
+              integrator_program(kernel_features(scene_features(scene), settings), KernelShape::Gpu).options);
+    EXPECT_EQ(programs[1].options, ray_batch_program(Accel::Bvh, KernelShape::Gpu).options);
+    // In the covering set a scene's program that another entry already is joins it.
+    const auto all = covering_programs({named}, KernelShape::Gpu);
+    int with_cornell = 0;
+    for (const auto& p : all) with_cornell += p.covers.find("scene cornell") != std::string::npos;
+    EXPECT_EQ(with_cornell, 1);
+}
