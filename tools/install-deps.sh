@@ -15,8 +15,16 @@ fi
 # time, but the test suite checks it).
 # oclgrind: a second OpenCL implementation, a simulator that checks every kernel
 # for out-of-bounds and uninitialised accesses and data races (tests/kernels/).
+# libclc-14, llvm-14 (llvm-link, opt, llc, llvm-nm), clang-15 and llvm-15: the
+# portability gate (clpath kernels --report, ctest -L gpu-portability) compiles
+# every kernel program for NVIDIA sm_90 and AMD gfx90a with LLVM 14 and
+# libclc's built-ins, and for AMD gfx1100 with LLVM 15 (LLVM 14 has no gfx11;
+# Debian's libclc-15 would replace libclc-14, so libclc 14's bitcode serves
+# both). NVIDIA's ptxas comes with the CUDA toolkit, not Debian: where
+# /usr/local/cuda/bin/ptxas is missing the gate skips sm_90 and says so.
 packages="
     build-essential cmake pkg-config clang libclang-rt-14-dev
+    clang-14 llvm-14 libclc-14 clang-15 llvm-15
     pocl-opencl-icd ocl-icd-opencl-dev opencl-headers clinfo oclgrind
     libglm-dev libglfw3-dev libopenimageio-dev openimageio-tools
     libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libgtest-dev

@@ -15,6 +15,7 @@ Command add_compare_command(CLI::App& app);
 Command add_view_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
 Command add_export_command(CLI::App& app);
+Command add_kernels_command(CLI::App& app);
 
 // The subcommands of `clpath bench`.
 Command add_bench_scaling_command(CLI::App& bench);

@@ -10,23 +10,27 @@
 namespace clpath {
 
 KernelVariant read_kernel_variant(const std::string& dir, const std::string& options) {
+    return read_kernel_variant(dir, options, "--ab-kernels");
+}
+
+KernelVariant read_kernel_variant(const std::string& dir, const std::string& options, const std::string& what) {
     KernelVariant v;
     v.options = options;
     if (dir.empty()) return v;
     namespace fs = std::filesystem;
     std::error_code ec;
-    if (!fs::is_directory(dir, ec)) throw Error("--ab-kernels " + dir + ": no such folder");
+    if (!fs::is_directory(dir, ec)) throw Error(what + " " + dir + ": no such folder");
     for (const auto& e : fs::directory_iterator(dir, ec)) {
         const std::string ext = e.path().extension().string();
         if (!e.is_regular_file() || (ext != ".cl" && ext != ".h")) continue;
         std::ifstream in(e.path(), std::ios::binary);
         std::ostringstream text;
         text << in.rdbuf();
-        if (!in) throw Error("--ab-kernels: cannot read " + e.path().string());
+        if (!in) throw Error(what + ": cannot read " + e.path().string());
         v.files.emplace_back(e.path().filename().string(), text.str());
     }
-    if (ec) throw Error("--ab-kernels " + dir + ": " + ec.message());
-    if (v.files.empty()) throw Error("--ab-kernels " + dir + ": no kernel files (*.cl, *.h) in it");
+    if (ec) throw Error(what + " " + dir + ": " + ec.message());
+    if (v.files.empty()) throw Error(what + " " + dir + ": no kernel files (*.cl, *.h) in it");
     std::sort(v.files.begin(), v.files.end());
     return v;
 }

@@ -13,6 +13,8 @@ namespace clpath {
 // empty: options only. Throws clpath::Error for a folder that is missing,
 // unreadable or holds no kernel file.
 KernelVariant read_kernel_variant(const std::string& dir, const std::string& options);
+// The same, with messages naming the option `what` (default "--ab-kernels").
+KernelVariant read_kernel_variant(const std::string& dir, const std::string& options, const std::string& what);
 
 // Registers --ab-kernels DIR and --ab-options OPTS on cmd; `kernels` names
 // what the variant replaces, `report` what the command prints of it.

@@ -40,6 +40,7 @@ int run(int argc, char** argv) {
     add(clpath::add_view_command);
     add(clpath::add_bench_command);
     add(clpath::add_export_command);
+    add(clpath::add_kernels_command);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
