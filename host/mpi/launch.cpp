@@ -1,9 +1,10 @@
-#include "cli/mpi_launch.hpp"
+#include "mpi/launch.hpp"
 
 #include <cstdlib>
 #include <memory>
 
 #include "util/error.hpp"
+#include "render/process_group.hpp"
 #ifdef CLPATH_WITH_MPI
 #include "mpi/mpi_job.hpp"
 #endif
@@ -37,7 +38,7 @@ void start_mpi_if_launched(int* argc, char*** argv) {
 #endif
 }
 
-MpiJob* mpi_job() {
+ProcessGroup* mpi_job() {
 #ifdef CLPATH_WITH_MPI
     return g_job.get();
 #else

@@ -1,13 +1,10 @@
-#include "cli/series_exchange.hpp"
+#include "bench/series_exchange.hpp"
 
 #include <cstring>
 #include <type_traits>
 
-#include "cli/mpi_launch.hpp"
+#include "render/process_group.hpp"
 #include "util/error.hpp"
-#ifdef CLPATH_WITH_MPI
-#include "mpi/mpi_job.hpp"
-#endif
 
 namespace clpath {
 namespace {
@@ -25,7 +22,7 @@ public:
     explicit Reader(const std::string& bytes) : b_(bytes) {}
     bool done() const { return at_ == b_.size(); }
     void raw(void* dst, std::size_t n) {
-        if (at_ + n > b_.size()) throw Error("internal: a truncated convergence series from another rank");
+        if (at_ + n > b_.size()) throw Error("internal: a truncated convergence series from another process");
         std::memcpy(dst, b_.data() + at_, n);
         at_ += n;
     }
@@ -48,8 +45,8 @@ private:
 }  // namespace
 
 std::vector<ConvergenceSeries> gather_series(const std::vector<ConvergenceSeries>& mine,
-                                             const std::vector<EstimatorConfig>& configs) {
-#ifdef CLPATH_WITH_MPI
+                                             const std::vector<EstimatorConfig>& configs, ProcessGroup* group) {
+    if (!group) return mine;
     std::string bytes;
     for (const auto& s : mine) {
         put_text(bytes, s.config);
@@ -60,7 +57,7 @@ std::vector<ConvergenceSeries> gather_series(const std::vector<ConvergenceSeries
         bytes.append(reinterpret_cast<const char*>(s.points.data()), n * sizeof(ConvergencePoint));
     }
     std::vector<ConvergenceSeries> all;
-    for (const std::string& from_rank : mpi_job()->gather_bytes(bytes)) {
+    for (const std::string& from_rank : group->gather_bytes(bytes)) {
         Reader r(from_rank);
         while (!r.done()) {
             ConvergenceSeries s;
@@ -77,10 +74,6 @@ std::vector<ConvergenceSeries> gather_series(const std::vector<ConvergenceSeries
         for (auto& s : all)
             if (s.config == c.name) ordered.push_back(std::move(s));
     return ordered;
-#else
-    (void)configs;
-    return mine;
-#endif
 }
 
 }  // namespace clpath
