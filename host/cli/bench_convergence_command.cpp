@@ -15,7 +15,7 @@
 #include "cli/commands.hpp"
 #include "cli/option_checks.hpp"
 #include "mpi/launch.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "util/error.hpp"
 #include "util/text_file.hpp"
 

@@ -23,8 +23,8 @@
 #include "render/render_session.hpp"
 #include "render/renderer.hpp"
 #include "scene/builtin_scenes.hpp"
-#include "scene/gltf_model.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/gltf_model.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "util/env_values.hpp"
 #include "util/error.hpp"
 

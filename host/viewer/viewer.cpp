@@ -13,7 +13,7 @@
 #include "cl/device.hpp"
 #include "render/renderer.hpp"
 #include "render/settings.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "util/error.hpp"
 #include "viewer/bvh_overlay.hpp"
 #include "viewer/camera_controller.hpp"

@@ -8,9 +8,9 @@
 
 #include <gtest/gtest.h>
 
-#include "scene/load_options.hpp"
+#include "scene/load/load_options.hpp"
 #include "scene/memory_files.hpp"
-#include "scene/obj_mesh.hpp"
+#include "scene/load/obj_mesh.hpp"
 
 namespace clpath {
 namespace {

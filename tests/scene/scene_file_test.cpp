@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "scene/load_options.hpp"
-#include "scene/scene_file.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/load_options.hpp"
+#include "scene/load/scene_file.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "scene/memory_files.hpp"
 
 namespace clpath {

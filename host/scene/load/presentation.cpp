@@ -1,4 +1,4 @@
-#include "scene/presentation.hpp"
+#include "scene/load/presentation.hpp"
 
 #include <algorithm>
 #include <array>

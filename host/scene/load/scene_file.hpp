@@ -5,7 +5,7 @@
 // of range is an error naming the file and the field's path.
 #include <string>
 
-#include "scene/load_options.hpp"
+#include "scene/load/load_options.hpp"
 #include "scene/scene.hpp"
 
 namespace clpath {

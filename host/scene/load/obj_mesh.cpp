@@ -1,4 +1,4 @@
-#include "scene/obj_mesh.hpp"
+#include "scene/load/obj_mesh.hpp"
 
 #include <algorithm>
 #include <array>
@@ -13,9 +13,9 @@
 
 #include <tiny_obj_loader.h>
 
-#include "scene/obj_text_encoding.hpp"
-#include "scene/obj_tokens.hpp"
-#include "scene/polygon_triangulation.hpp"
+#include "scene/load/obj_text_encoding.hpp"
+#include "scene/load/obj_tokens.hpp"
+#include "scene/load/polygon_triangulation.hpp"
 #include "util/error.hpp"
 
 namespace clpath {

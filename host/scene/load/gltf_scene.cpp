@@ -1,11 +1,11 @@
-#include "scene/gltf_scene.hpp"
+#include "scene/load/gltf_scene.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
 
-#include "scene/presentation.hpp"
+#include "scene/load/presentation.hpp"
 #include "util/error.hpp"
 
 namespace clpath {

@@ -1,4 +1,4 @@
-#include "scene/load_options.hpp"
+#include "scene/load/load_options.hpp"
 
 #include <cerrno>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "scene/obj_export.hpp"
+#include "scene/export/obj_export.hpp"
 
 #include <cstdio>
 #include <cctype>

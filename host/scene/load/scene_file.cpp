@@ -1,4 +1,4 @@
-#include "scene/scene_file.hpp"
+#include "scene/load/scene_file.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,10 +10,10 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "scene/gltf_scene.hpp"
+#include "scene/load/gltf_scene.hpp"
 #include "scene/json_fields.hpp"
-#include "scene/obj_mesh.hpp"
-#include "scene/obj_textures.hpp"
+#include "scene/load/obj_mesh.hpp"
+#include "scene/load/obj_textures.hpp"
 #include "scene/render_names.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/shapes.hpp"

@@ -1,4 +1,4 @@
-#include "scene/mitsuba_export.hpp"
+#include "scene/export/mitsuba_export.hpp"
 
 #include <cctype>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <set>
 
 #include "scene/json_fields.hpp"
-#include "scene/mitsuba_gltf_export.hpp"
+#include "scene/export/mitsuba_gltf_export.hpp"
 #include "util/error.hpp"
 
 namespace clpath {

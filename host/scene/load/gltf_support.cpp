@@ -1,4 +1,4 @@
-#include "scene/gltf_support.hpp"
+#include "scene/load/gltf_support.hpp"
 
 #include <cstdint>
 #include <cstring>

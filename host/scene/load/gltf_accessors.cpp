@@ -2,7 +2,7 @@
 #include <cstring>
 #include <type_traits>
 
-#include "scene/gltf_parts.hpp"
+#include "scene/load/gltf_parts.hpp"
 #include "util/error.hpp"
 
 namespace clpath::gltf {

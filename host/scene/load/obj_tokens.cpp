@@ -1,4 +1,4 @@
-#include "scene/obj_tokens.hpp"
+#include "scene/load/obj_tokens.hpp"
 
 #include <charconv>
 #include <cmath>

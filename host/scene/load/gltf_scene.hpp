@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/gltf_model.hpp"
+#include "scene/load/gltf_model.hpp"
 #include "scene/scene_builder.hpp"
 
 namespace clpath {

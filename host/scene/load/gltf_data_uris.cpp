@@ -1,6 +1,6 @@
 #include <array>
 
-#include "scene/gltf_parts.hpp"
+#include "scene/load/gltf_parts.hpp"
 
 namespace clpath::gltf {
 namespace {

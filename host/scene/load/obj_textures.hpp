@@ -2,8 +2,8 @@
 // The images an OBJ material maps (map_Kd, map_d), decoded into a scene's
 // texture list: one RGBA texture per material, colour from map_Kd, alpha from
 // map_d's first channel (or map_Kd's own alpha when map_d names the same file).
-#include "scene/load_options.hpp"
-#include "scene/obj_mesh.hpp"
+#include "scene/load/load_options.hpp"
+#include "scene/load/obj_mesh.hpp"
 #include "scene/scene.hpp"
 
 namespace clpath {

@@ -1,4 +1,4 @@
-#include "scene/mitsuba_gltf_export.hpp"
+#include "scene/export/mitsuba_gltf_export.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "scene/obj_textures.hpp"
+#include "scene/load/obj_textures.hpp"
 
 #include <algorithm>
 

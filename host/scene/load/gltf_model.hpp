@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/load_options.hpp"
+#include "scene/load/load_options.hpp"
 #include "scene/scene.hpp"
 #include "util/error.hpp"
 

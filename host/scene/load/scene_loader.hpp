@@ -5,7 +5,7 @@
 // the benchmarks all load through here.
 #include <string>
 
-#include "scene/load_options.hpp"
+#include "scene/load/load_options.hpp"
 #include "scene/scene.hpp"
 
 namespace clpath {

@@ -5,8 +5,8 @@
 #include <string>
 
 #include "image/texture_io.hpp"
-#include "scene/obj_mesh.hpp"
-#include "scene/presentation.hpp"
+#include "scene/load/obj_mesh.hpp"
+#include "scene/load/presentation.hpp"
 
 namespace clpath {
 

@@ -1,4 +1,4 @@
-#include "scene/obj_text_encoding.hpp"
+#include "scene/load/obj_text_encoding.hpp"
 
 #include <cstdint>
 

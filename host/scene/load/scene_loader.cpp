@@ -1,12 +1,12 @@
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 
 #include "scene/builtin_scenes.hpp"
-#include "scene/gltf_scene.hpp"
-#include "scene/scene_file.hpp"
+#include "scene/load/gltf_scene.hpp"
+#include "scene/load/scene_file.hpp"
 #include "util/error.hpp"
 
 namespace clpath {

@@ -1,4 +1,4 @@
-#include "scene/polygon_triangulation.hpp"
+#include "scene/load/polygon_triangulation.hpp"
 
 #include <cmath>
 

@@ -9,7 +9,7 @@
 #include <glm/glm.hpp>
 #include <tiny_gltf.h>
 
-#include "scene/gltf_model.hpp"
+#include "scene/load/gltf_model.hpp"
 
 namespace clpath::gltf {
 

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <map>
 
-#include "scene/gltf_parts.hpp"
+#include "scene/load/gltf_parts.hpp"
 #include "util/error.hpp"
 
 namespace clpath::gltf {

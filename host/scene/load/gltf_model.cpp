@@ -1,4 +1,4 @@
-#include "scene/gltf_model.hpp"
+#include "scene/load/gltf_model.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -11,8 +11,8 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
 
-#include "scene/gltf_parts.hpp"
-#include "scene/gltf_support.hpp"
+#include "scene/load/gltf_parts.hpp"
+#include "scene/load/gltf_support.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
