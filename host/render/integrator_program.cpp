@@ -70,7 +70,6 @@ void IntegratorProgram::launch_band(const DeviceScene& scene, Film& film, const 
     fp.seed = settings_.seed;
     fp.first_sample = std::uint32_t(film.samples_per_pixel());
     fp.samples = samples;
-    fp.max_depth = settings_.max_depth;
     fp.rr_rule = settings_.rr_rule;
     fp.rr_min_depth = settings_.rr_min_depth;
     fp.pixel_offset = first_pixel;

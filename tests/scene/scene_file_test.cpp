@@ -294,8 +294,9 @@ TEST(SceneFileBad, OutOfRangeValues) {
               "scenes/s.json: materials.x.emission: -1 is out of range (must be >= 0)");
     EXPECT_EQ(material(R"({"type": "emitter"})"), "scenes/s.json: materials.x.emission: required for an emitter");
     EXPECT_EQ(material(R"({"type": "plastic"})"),
-              "scenes/s.json: materials.x.type: unknown material type 'plastic' (choose one of: diffuse, emitter, "
-              "mirror, conductor, glossy, dielectric, glass)");
+              "scenes/s.json: materials.x.type: unknown material type 'plastic' (choose one of: diffuse, mirror, "
+              "conductor, dielectric, or the aliases emitter (diffuse of albedo 0 that emits), glossy (conductor), "
+              "glass (dielectric))");
     EXPECT_EQ(material(R"({"type": "diffuse", "albedo": 0.5, "color": 0.5})"),
               "scenes/s.json: materials.x.color: give only one of 'albedo' and 'color' (they mean the same)");
 

@@ -61,9 +61,11 @@ std::string bsdf(const Material& m, bool colours) {
                    ", \"ext_ior\": 1.0, \"specular_transmittance\": " + rgb(c) + "}";
         return "{\"type\": \"roughdielectric\", \"distribution\": \"ggx\", \"alpha\": " + num(alpha) +
                ", \"int_ior\": " + num(m.ior) + ", \"ext_ior\": 1.0, \"specular_transmittance\": " + rgb(c) + "}";
-    default:
+    case CLP_MAT_DIFFUSE:
         return twosided("{\"type\": \"diffuse\", \"reflectance\": " +
                         (colours ? mitsuba_vertex_colour_product(rgb(c)) : rgb(c)) + "}");
+    default:  // the glTF material has its own writer (mitsuba_gltf_export.hpp)
+        throw Error(std::string("internal: no Mitsuba BSDF for the material kind ") + material_kind_name(m.kind));
     }
 }
 

@@ -23,15 +23,6 @@ std::string vec(glm::vec3 v, const char* sep = " ") { return num(v.x) + sep + nu
 std::string json_vec(glm::vec3 v) { return std::string("[") + vec(v, ", ") + "]"; }
 
 
-const char* kind_name(std::uint32_t kind) {
-    switch (kind) {
-    case CLP_MAT_MIRROR: return "a mirror";
-    case CLP_MAT_CONDUCTOR: return "a conductor (glossy)";
-    case CLP_MAT_DIELECTRIC: return "a dielectric (glass)";
-    default: return "not diffuse";
-    }
-}
-
 // MTL names are one token: letters, digits, '_', '-', '.'; others become '_'.
 std::string mtl_name(const std::string& name, std::set<std::string>& taken) {
     std::string s = name.empty() ? "material" : name;
@@ -52,7 +43,7 @@ ObjExport export_obj_scene(const Scene& scene, const std::string& stem, const st
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         if (!used[i] || scene.materials[i].kind == CLP_MAT_DIFFUSE) continue;
         const std::string name = i < scene.material_names.size() ? scene.material_names[i] : std::to_string(i);
-        throw Error("material '" + name + "' is " + kind_name(scene.materials[i].kind) +
+        throw Error("material '" + name + "' is a " + material_kind_name(scene.materials[i].kind) +
                     ": only diffuse and emissive surfaces are exported (Cycles' glossy and glass BSDFs differ "
                     "from clpath's; use a high-sample clpath render as the reference for such scenes)");
     }

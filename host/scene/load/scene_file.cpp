@@ -121,8 +121,11 @@ SceneMaterial read_material(Object o) {
     } else if (type == "dielectric") {
         m = dielectric(ior ? ior->real(kIor) : 1.5f, rough, c);
     } else {
-        type_v.fail("unknown material type '" + type + "' (choose one of: diffuse, emitter, mirror, conductor, "
-                    "glossy, dielectric, glass)");
+        std::string choices;
+        for (std::uint32_t k = 0; k < CLP_MAT_KIND_COUNT; ++k)
+            if (material_kind_in_scene_files(k)) choices += std::string(material_kind_name(k)) + ", ";
+        type_v.fail("unknown material type '" + type + "' (choose one of: " + choices +
+                    "or the aliases emitter (diffuse of albedo 0 that emits), glossy (conductor), glass (dielectric))");
     }
     glm::vec3 e = emission ? emission->color(jsonf::kNonNegative) : glm::vec3(0);
     if (strength) e *= strength->real(jsonf::kNonNegative);
