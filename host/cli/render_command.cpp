@@ -199,11 +199,13 @@ int run_render(const RenderOptions& o) {
     for (const auto& d : devices) device_names += (device_names.empty() ? "" : ", ") + d.name;
     std::printf(
         "summary: device=\"%s\" devices=%zu integrator=%s triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f "
-        "spp=%llu render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s%s\n",
+        "spp=%llu render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s "
+        "bytes_to_device=%llu bytes_from_device=%llu%s\n",
         device_names.c_str(), result.shares.size(), integrator_name(settings.integrator), scene.triangle_count(),
         result.bvh.build_ms, result.bvh.node_count, result.bvh.sah_cost, (unsigned long long)done_spp, wall,
         samples / wall * 1e-6, double(result.rays) / wall * 1e-6, (unsigned long long)result.rays,
         (unsigned long long)result.nonfinite, accel_name(settings.accel),
+        (unsigned long long)result.bytes_to_device, (unsigned long long)result.bytes_from_device,
         result.stopped ? " interrupted=1" : "");
     if (result.shares.size() > 1 || mpi)
         for (const auto& s : result.shares)

@@ -161,7 +161,7 @@ void MpiJob::reduce_film(ExactFilm& film) {
 std::vector<DeviceShare> MpiJob::gather_shares(const std::vector<DeviceShare>& local) {
     struct Wire {
         char device[96];
-        std::uint64_t chunks, spp, rays, nonfinite;
+        std::uint64_t chunks, spp, rays, nonfinite, to_device, from_device;
         double busy;
     };
     std::string mine;
@@ -174,6 +174,8 @@ std::vector<DeviceShare> MpiJob::gather_shares(const std::vector<DeviceShare>& l
         w.rays = s.rays;
         w.nonfinite = s.nonfinite;
         w.busy = s.busy_seconds;
+        w.to_device = s.bytes_to_device;
+        w.from_device = s.bytes_from_device;
         mine.append(reinterpret_cast<const char*>(&w), sizeof w);
     }
     std::vector<DeviceShare> out;
@@ -181,7 +183,7 @@ std::vector<DeviceShare> MpiJob::gather_shares(const std::vector<DeviceShare>& l
         for (std::size_t at = 0; at + sizeof(Wire) <= bytes.size(); at += sizeof(Wire)) {
             Wire w;
             std::memcpy(&w, bytes.data() + at, sizeof w);
-            out.push_back({w.device, w.chunks, w.spp, w.rays, w.nonfinite, w.busy});
+            out.push_back({w.device, w.chunks, w.spp, w.rays, w.nonfinite, w.busy, w.to_device, w.from_device});
         }
     return out;
 }

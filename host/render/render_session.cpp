@@ -107,6 +107,8 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
     for (const auto& s : r.shares) {
         r.rays += s.rays;
         r.nonfinite += s.nonfinite;
+        r.bytes_to_device += s.bytes_to_device;
+        r.bytes_from_device += s.bytes_from_device;
     }
     return r;
 }

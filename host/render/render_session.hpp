@@ -50,6 +50,7 @@ struct SessionResult {
     bool stopped = false;             // stop_requested() ended it early
     double wall_seconds = 0;          // from the first chunk: compiles and uploads are not in it
     std::uint64_t rays = 0, nonfinite = 0;
+    std::uint64_t bytes_to_device = 0, bytes_from_device = 0;  // every device's, scene uploads included
     bool leads = true;                // false on processes of a group other than the lead
 };
 

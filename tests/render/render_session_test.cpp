@@ -91,6 +91,28 @@ TEST(RenderSession, CheckpointedRenderResumesToTheSameBits) {
     fs::remove(checkpoint);
 }
 
+// The film stays on the device: a render in many chunks reads back one exact
+// film (48 bytes a pixel) and a counter record per launch, and uploads no more
+// than one in few chunks but the launches' parameters. (Before, each chunk
+// moved a 32-byte-per-pixel film each way.)
+TEST(RenderSession, ChunksMoveNoFilm) {
+    const Scene scene = test::small_cornell(32, 24);
+    const std::uint64_t pixels = 32 * 24;
+    RenderSettings settings;
+    SessionOptions few, many;
+    few.spp = many.spp = 32;
+    few.chunk_samples = 8;
+    many.chunk_samples = 1;
+    const SessionResult a = render_session(scene, settings, one_device(), few);
+    const SessionResult b = render_session(scene, settings, one_device(), many);
+    EXPECT_EQ(b.film.samples_per_pixel(), 32u);
+    // At most 4 launches a chunk (render/device_farm.cpp), each reading a 16-byte Counters.
+    const std::uint64_t launches = 4 * 32;
+    EXPECT_LE(b.bytes_from_device, 48 * pixels + sizeof(Counters) * launches);
+    EXPECT_GE(b.bytes_from_device, 48 * pixels);
+    EXPECT_LE(b.bytes_to_device, a.bytes_to_device + sizeof(FrameParams) * launches);
+}
+
 TEST(RenderSession, RefusesACheckpointOfOtherSettings) {
     const Scene scene = test::small_cornell(8, 8);
     RenderSettings settings;
