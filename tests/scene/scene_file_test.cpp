@@ -1,6 +1,7 @@
 // The JSON scene format: what a valid file gives, and that every kind of bad
 // input is refused with a message naming the file and the line or field.
 #include <cmath>
+#include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include "scene/load/scene_file.hpp"
 #include "scene/load/scene_loader.hpp"
 #include "scene/memory_files.hpp"
+#include "support/temp_paths.hpp"
 
 namespace clpath {
 namespace {
@@ -382,9 +384,10 @@ TEST(LoadScene, DispatchesOnWhatItIsGiven) {
 }
 
 TEST(LoadScene, FolderInsteadOfFile) {
-    const std::string dir = testing::TempDir() + "/clpath-scene-folder.json";
+    const std::string dir = test::temp_path("scene-folder.json");
     std::filesystem::create_directories(dir);
     EXPECT_EQ(error_of([&] { load_scene(dir); }), dir + ": is a folder, not a file");
+    std::filesystem::remove(dir);
 }
 
 TEST(LoadScene, BareObjIsFramedAndLit) {
