@@ -64,7 +64,7 @@ static inline int russian_roulette(constant const FrameParams* fp, uint depth, f
     if (fp->rr_rule == CLP_RR_THROUGHPUT && depth >= fp->rr_min_depth)
         q = fmin(max3(*beta), 1.0f);
     else if (fp->rr_rule == CLP_RR_DEPTH)
-        q = 1.0f - 1.0f / (float)(fp->max_depth - depth); /* the thesis renderer's rule */
+        q = 1.0f - 1.0f / (float)(CLP_MAX_DEPTH - depth); /* the thesis renderer's rule */
     if (q >= 1.0f) return 1;
     if (q <= 0.0f || rng_next(rng) >= q) return 0;
     *beta /= q;
@@ -265,12 +265,8 @@ CLP_GPU_INLINE float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* ra
 
 /* ---- the kernel --------------------------------------------------------- */
 
-kernel void render_paths(global const AccelNode* nodes, global const TriVerts* tris, global const uint* tri_material,
-                         global const Material* materials, global const MaterialExt* material_ext,
-                         global const float* normals, global const Light* lights,
-                         global const AliasEntry* alias, global const float4* env_pixels, global const float* env_cdf,
-                         global const float* attrs, global const TextureDesc* tex_desc, global const uint* texels,
-                         constant const FrameParams* fp, global AccumPixel* accum, global Counters* counters) {
+kernel void render_paths(CLP_SCENE_PARAMS constant const FrameParams* fp, global AccumPixel* accum,
+                         global Counters* counters) {
     local uint group_rays, group_nonfinite;
     if (get_local_id(0) == 0) group_rays = group_nonfinite = 0;
     barrier(CLK_LOCAL_MEM_FENCE);

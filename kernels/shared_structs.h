@@ -29,16 +29,26 @@ typedef std::uint32_t uint;
  * its stack is 244 bytes, under the 256 a GPU traversal kernel is held to. */
 #define CLP_BVH_MAX_DEPTH 40
 
-/* Material kinds: how a surface scatters. Any kind may also emit (emission > 0);
- * a pure emitter is a diffuse material of albedo 0. A program is compiled only
- * with the kinds a scene uses (CLP_HAS_<KIND>). */
-#define CLP_MAT_DIFFUSE 0u    /* Lambert, albedo */
-#define CLP_MAT_MIRROR 1u     /* perfect specular reflection tinted by albedo */
-#define CLP_MAT_CONDUCTOR 2u  /* GGX microfacet reflection: roughness, Schlick Fresnel with F0 = albedo */
-#define CLP_MAT_DIELECTRIC 3u /* glass: Fresnel reflection and refraction, ior; rough when roughness > 0 */
-#define CLP_MAT_GLTF 4u       /* glTF metallic-roughness: Lambert under a GGX dielectric coat, mixed with a GGX
-                                 conductor by metallic (glTF 2.0 specification, appendix B) */
-#define CLP_MAT_KIND_COUNT 5u
+/* Material kinds: how a surface scatters. This table is the one list of them:
+ * the CLP_MAT_* values, the kernels' CLP_HAS_MAT_<KIND> switches, the scene
+ * file's material types and the exporters are generated from it or checked
+ * against it (tests/scene/material_kinds_test.cpp). Any kind may also emit
+ * (emission > 0); a pure emitter is a diffuse material of albedo 0. A program
+ * is compiled only with the kinds a scene uses.
+ * X(KIND, name, whether a scene file names it as "type": "name"):
+ *   DIFFUSE     Lambert, albedo
+ *   MIRROR      perfect specular reflection tinted by albedo
+ *   CONDUCTOR   GGX microfacet reflection: roughness, Schlick Fresnel with F0 = albedo
+ *   DIELECTRIC  glass: Fresnel reflection and refraction, ior; rough when roughness > 0
+ *   GLTF        glTF metallic-roughness: Lambert under a GGX dielectric coat, mixed with a GGX
+ *               conductor by metallic (glTF 2.0 specification, appendix B); made by glTF files
+ *               and textured MTL materials */
+#define CLP_MATERIAL_KINDS(X)                                                               \
+    X(DIFFUSE, diffuse, 1) X(MIRROR, mirror, 1) X(CONDUCTOR, conductor, 1) X(DIELECTRIC, dielectric, 1) \
+    X(GLTF, gltf, 0)
+#define CLP_MAT_ENUMERATOR(KIND, name, in_scene_files) CLP_MAT_##KIND,
+enum { CLP_MATERIAL_KINDS(CLP_MAT_ENUMERATOR) CLP_MAT_KIND_COUNT };
+#undef CLP_MAT_ENUMERATOR
 
 /* MaterialExt.alpha_mode: how a surface's coverage (base colour alpha) is used. */
 #define CLP_ALPHA_OPAQUE 0u /* alpha ignored */
@@ -276,7 +286,6 @@ typedef struct {
     uint seed;
     uint first_sample;     /* sample index of this launch's first sample */
     uint samples;          /* samples per pixel in this launch */
-    uint max_depth;        /* bounces: 0 sees emitters only */
     uint rr_rule;          /* CLP_RR_* */
     uint rr_min_depth;     /* bounces before throughput roulette starts */
     uint pixel_offset;     /* first pixel of this launch (launches may cover a band) */
@@ -293,7 +302,7 @@ typedef struct {
     uint env_height;
     uint scene_flags;      /* CLP_SCENE_*: what the scene really has, for kernels compiled with every feature */
     uint attr_stride;      /* floats per triangle in the attribute buffer (CLP_SCENE_UVS, _TANGENTS, _COLORS) */
-    uint pad1, pad2;
+    uint pad1, pad2, pad3;
 } FrameParams;
 
 /* Counters the kernels bump with atomics; the host reads and clears them per launch. */
@@ -331,6 +340,21 @@ typedef struct {
     float b1, b2;
     int tri;
 } Hit;
+
+/* The scene's device buffers, in the order every kernel that reads the scene
+ * takes them: the one list behind the kernels' parameters (CLP_SCENE_PARAMS)
+ * and the host's uploads and bindings (host/render/device_scene.hpp).
+ * X(element type in the kernels, parameter name); AccelNode is the node type
+ * of the layout a program traverses (kernels/traverse.cl). */
+#define CLP_SCENE_BUFFERS(X)                                                              \
+    X(AccelNode, nodes) X(TriVerts, tris) X(uint, tri_material) X(Material, materials)    \
+    X(MaterialExt, material_ext) X(float, normals) X(Light, lights) X(AliasEntry, alias) \
+    X(float4, env_pixels) X(float, env_cdf) X(float, attrs) X(TextureDesc, tex_desc)     \
+    X(uint, texels)
+#ifndef __cplusplus
+#define CLP_SCENE_PARAM(type, name) global const type* name,
+#define CLP_SCENE_PARAMS CLP_SCENE_BUFFERS(CLP_SCENE_PARAM)
+#endif
 
 CLP_STATIC_ASSERT(sizeof(BvhNode64) == 64, bvh_node_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(TriVerts) == 48, tri_verts_is_48_bytes);

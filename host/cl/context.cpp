@@ -82,17 +82,42 @@ Buffer Context::buffer(std::size_t bytes, cl_mem_flags flags, const std::string&
     cl_mem m = clCreateBuffer(ctx_, flags | (init ? CL_MEM_COPY_HOST_PTR : 0), bytes, const_cast<void*>(init), &err);
     cl_check(err, "allocating " + what + " (" + mib(bytes) + ") on " + device_.name);
     *allocated_ += bytes;
+    if (init) to_device_ += bytes;
     return Buffer(m, bytes, allocated_);
 }
 
 void Context::write(const Buffer& b, const void* data, std::size_t bytes, std::size_t offset) {
     cl_check(clEnqueueWriteBuffer(queue_, b.get(), CL_TRUE, offset, bytes, data, 0, nullptr, nullptr),
              "clEnqueueWriteBuffer");
+    to_device_ += bytes;
+}
+
+cl_event Context::write_async(const Buffer& b, const void* data, std::size_t bytes, bool want_event) {
+    cl_event e = nullptr;
+    cl_check(clEnqueueWriteBuffer(queue_, b.get(), CL_FALSE, 0, bytes, data, 0, nullptr, want_event ? &e : nullptr),
+             "clEnqueueWriteBuffer");
+    to_device_ += bytes;
+    return e;
+}
+
+cl_event Context::read_async(const Buffer& b, void* data, std::size_t bytes, bool want_event) {
+    cl_event e = nullptr;
+    cl_check(clEnqueueReadBuffer(queue_, b.get(), CL_FALSE, 0, bytes, data, 0, nullptr, want_event ? &e : nullptr),
+             "clEnqueueReadBuffer");
+    from_device_ += bytes;
+    return e;
+}
+
+void Context::fill_async(const Buffer& b, cl_uint word) {
+    // The pattern is copied at the call (OpenCL 1.2, clEnqueueFillBuffer).
+    cl_check(clEnqueueFillBuffer(queue_, b.get(), &word, sizeof word, 0, b.bytes(), 0, nullptr, nullptr),
+             "clEnqueueFillBuffer");
 }
 
 void Context::read(const Buffer& b, void* data, std::size_t bytes, std::size_t offset) {
     cl_check(clEnqueueReadBuffer(queue_, b.get(), CL_TRUE, offset, bytes, data, 0, nullptr, nullptr),
              "clEnqueueReadBuffer");
+    from_device_ += bytes;
 }
 
 void Context::zero(const Buffer& b) {

@@ -117,6 +117,13 @@ public:
 
     void write(const Buffer& b, const void* data, std::size_t bytes, std::size_t offset = 0);
     void read(const Buffer& b, void* data, std::size_t bytes, std::size_t offset = 0);
+    // The same, enqueued without waiting: data must stay as it is (write) or
+    // untouched (read) until the returned event completes; the caller
+    // releases the event (nullptr when not asked for).
+    cl_event write_async(const Buffer& b, const void* data, std::size_t bytes, bool want_event = false);
+    cl_event read_async(const Buffer& b, void* data, std::size_t bytes, bool want_event = false);
+    // Sets every 4-byte word of b (whose size is a multiple of 4) to word, without waiting.
+    void fill_async(const Buffer& b, cl_uint word);
     // Sets every byte of b to zero (blocking).
     void zero(const Buffer& b);
     template <class T>
@@ -134,12 +141,16 @@ public:
 
     // Bytes of the buffers made by this Context that are still alive.
     std::size_t allocated_bytes() const { return *allocated_; }
+    // Bytes moved between host and device so far (uploads at creation included).
+    std::uint64_t bytes_to_device() const { return to_device_; }
+    std::uint64_t bytes_from_device() const { return from_device_; }
 
 private:
     DeviceInfo device_;
     cl_context ctx_ = nullptr;
     cl_command_queue queue_ = nullptr;
     std::shared_ptr<MemoryCounter> allocated_ = std::make_shared<MemoryCounter>(0);
+    std::atomic<std::uint64_t> to_device_{0}, from_device_{0};
 };
 
 // Seconds a finished, profiled event spent executing; releases the event.

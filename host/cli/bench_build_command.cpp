@@ -13,7 +13,7 @@
 #include "bvh/bvh.hpp"
 #include "cli/commands.hpp"
 #include "cli/option_checks.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "util/error.hpp"
 
 namespace clpath {

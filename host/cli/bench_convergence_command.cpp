@@ -10,12 +10,12 @@
 #include "bench/convergence.hpp"
 #include "bench/convergence_report.hpp"
 #include "bench/estimator_configs.hpp"
+#include "bench/series_exchange.hpp"
 #include "cl/context.hpp"
 #include "cli/commands.hpp"
 #include "cli/option_checks.hpp"
-#include "cli/mpi_launch.hpp"
-#include "cli/series_exchange.hpp"
-#include "scene/scene_loader.hpp"
+#include "mpi/launch.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "util/error.hpp"
 #include "util/text_file.hpp"
 
@@ -116,7 +116,7 @@ int run_convergence(const ConvergenceArgs& o) {
         series.push_back(std::move(s));
     }
     if (ranks > 1) {
-        series = gather_series(series, configs);
+        series = gather_series(series, configs, mpi_job());
         if (rank != 0) return 0;
     }
 

@@ -16,7 +16,7 @@
 #include "cli/commands.hpp"
 #include "cli/kernel_variant_option.hpp"
 #include "cli/option_checks.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "shared_structs.h"
 #include "util/error.hpp"
 

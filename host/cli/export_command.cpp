@@ -9,9 +9,9 @@
 
 #include "cli/commands.hpp"
 #include "cli/option_checks.hpp"
-#include "scene/mitsuba_export.hpp"
-#include "scene/obj_export.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/export/mitsuba_export.hpp"
+#include "scene/export/obj_export.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "util/error.hpp"
 #include "util/text_file.hpp"
 

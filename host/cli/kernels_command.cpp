@@ -20,7 +20,7 @@
 #include "cli/option_checks.hpp"
 #include "render/kernel_report.hpp"
 #include "render/settings.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "util/error.hpp"
 
 namespace clpath {

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
-#include "cli/mpi_launch.hpp"
+#include "mpi/launch.hpp"
 #include "util/error.hpp"
 
 namespace {

@@ -15,15 +15,16 @@
 #include "cli/option_checks.hpp"
 #include "cli/scene_overrides.hpp"
 #include "image/tone_map.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/progress.hpp"
 #include "image/image.hpp"
 #include "cl/device_set.hpp"
-#include "cli/chunked_render.hpp"
-#include "cli/mpi_launch.hpp"
+#include "mpi/launch.hpp"
+#include "render/render_session.hpp"
 #include "render/renderer.hpp"
 #include "scene/builtin_scenes.hpp"
-#include "scene/gltf_model.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/gltf_model.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "util/env_values.hpp"
 #include "util/error.hpp"
 
@@ -100,13 +101,13 @@ int run_render(const RenderOptions& o) {
     if (!o.quiet)
         std::fprintf(stderr, "clpath: loaded '%s' from %s in %.3f s: %zu triangles, %zu materials\n", scene.name.c_str(),
                      o.scene.c_str(), load_seconds, scene.triangle_count(), scene.materials.size());
-    if (o.spp) scene.render.spp = std::uint32_t(std::min<std::uint64_t>(*o.spp, kMaxSamplesPerPixel));
-    if (o.max_depth) scene.render.max_depth = *o.max_depth;
-    if (o.seed) scene.render.seed = *o.seed;
-    if (o.rr) scene.render.russian_roulette = *o.rr;
-    if (o.integrator) scene.render.integrator = *o.integrator;
-    if (o.ao_distance) scene.render.ao_distance = *o.ao_distance;
+    // The scene file's render block gives the defaults; options override the settings, never the scene.
     RenderSettings settings = settings_from_scene(scene.render);
+    if (o.max_depth) settings.max_depth = *o.max_depth;
+    if (o.seed) settings.seed = *o.seed;
+    if (o.rr) settings.rr_rule = parse_rr_rule(*o.rr);
+    if (o.integrator) settings.integrator = parse_integrator(*o.integrator);
+    if (o.ao_distance) settings.ao_distance = *o.ao_distance;
     settings.rr_min_depth = o.rr_min_depth;
     settings.hemisphere = parse_hemisphere(o.hemisphere);
     settings.all_features = o.all_features;
@@ -124,12 +125,14 @@ int run_render(const RenderOptions& o) {
     for (const auto& out : outputs) check_output_path(out);
     // --time alone renders until the time is up; --spp with it caps the samples.
     const std::uint64_t spp = o.spp ? *o.spp : (o.time_limit > 0 ? 0 : scene.render.spp);
+    validate_settings(settings);
     if (!scene.has_emitter())
         std::fprintf(stderr, "clpath: warning: scene '%s' has no emitter; the image will be black\n",
                      scene.name.c_str());
 
     const std::vector<DeviceInfo> devices = select_devices(o.device);
-    MpiJob* mpi = mpi_job();
+    ProcessGroup* mpi = mpi_job();
+    const bool lead = !mpi || mpi_rank() == 0;
     if (!o.quiet) {
         std::string names;
         for (const auto& d : devices) names += (names.empty() ? "" : ", ") + d.describe();
@@ -137,27 +140,41 @@ int run_render(const RenderOptions& o) {
                      scene.triangle_count(), scene.camera.width, scene.camera.height,
                      integrator_name(settings.integrator), names.c_str());
     }
-    ChunkedRenderOptions co;
-    co.spp = spp;
-    co.time_limit = o.time_limit;
-    co.chunk_samples = o.chunk_samples;
-    co.checkpoint_seconds = o.checkpoint_seconds;
-    co.checkpoint_path = o.checkpoint_file.empty() ? outputs.front() + ".checkpoint" : o.checkpoint_file;
-    co.resume_path = o.resume;
-    co.progress = !o.quiet;
-    co.progress_interval = progress_interval;
-    ChunkedRenderResult result;
+    SessionOptions so;
+    so.spp = spp;
+    so.time_limit = o.time_limit;
+    so.chunk_samples = o.chunk_samples;
+    so.checkpoint_seconds = o.checkpoint_seconds;
+    so.checkpoint_path = o.checkpoint_file.empty() ? outputs.front() + ".checkpoint" : o.checkpoint_file;
+    so.resume_path = o.resume;
+    const bool show_progress = !o.quiet && lead;
+    InterruptFlag interrupt;
+    // Progress keeps its own clock, started once the scene is prepared: the
+    // session's starts with the first chunk, and a log should show lines
+    // while the devices get ready too.
+    std::unique_ptr<Progress> progress;
+    SessionHooks hooks;
+    hooks.on_start = [&](const BvhStats& bvh) {
+        if (show_progress) std::fprintf(stderr, "clpath: %s\n", describe(bvh).c_str());
+        ProgressOptions po;
+        po.log_interval = progress_interval;
+        progress = std::make_unique<Progress>(spp, o.time_limit, show_progress, po);
+    };
+    hooks.on_progress = [&](std::uint64_t done) { progress->update(done); };
+    hooks.stop_requested = [&] { return interrupt.raised(); };
+    SessionResult result;
     try {
-        result = render_in_chunks(scene, settings, devices, co, mpi);
+        result = render_session(scene, settings, devices, so, hooks, mpi);
     } catch (const UsageError&) {
         throw;  // about the command line or the environment, not the scene
     } catch (const Error& e) {
         throw Error(o.scene + ": " + e.what());
     }
-    if (!result.writes_output) return 0;
+    if (progress) progress->finish();
+    if (!result.leads) return 0;
     const std::uint64_t done_spp = result.film.samples_per_pixel();
-    if (result.interrupted) {
-        std::fprintf(stderr, "clpath: interrupted by signal %d after %llu samples per pixel\n", result.signal,
+    if (result.stopped) {
+        std::fprintf(stderr, "clpath: interrupted by signal %d after %llu samples per pixel\n", interrupt.signal(),
                      (unsigned long long)done_spp);
         if (o.no_partial) {
             std::fprintf(stderr, "clpath: --no-partial: nothing written\n");
@@ -174,7 +191,7 @@ int run_render(const RenderOptions& o) {
         if (!o.quiet) std::fprintf(stderr, "clpath: wrote %s\n", out.c_str());
     }
     // A finished render needs its checkpoint no more.
-    if (!result.interrupted && o.checkpoint_seconds > 0) std::filesystem::remove(co.checkpoint_path);
+    if (!result.stopped && o.checkpoint_seconds > 0) std::filesystem::remove(so.checkpoint_path);
 
     const double wall = result.wall_seconds;
     const double samples = double(done_spp) * scene.camera.width * scene.camera.height;
@@ -182,12 +199,14 @@ int run_render(const RenderOptions& o) {
     for (const auto& d : devices) device_names += (device_names.empty() ? "" : ", ") + d.name;
     std::printf(
         "summary: device=\"%s\" devices=%zu integrator=%s triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f "
-        "spp=%llu render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s%s\n",
+        "spp=%llu render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s "
+        "bytes_to_device=%llu bytes_from_device=%llu%s\n",
         device_names.c_str(), result.shares.size(), integrator_name(settings.integrator), scene.triangle_count(),
         result.bvh.build_ms, result.bvh.node_count, result.bvh.sah_cost, (unsigned long long)done_spp, wall,
         samples / wall * 1e-6, double(result.rays) / wall * 1e-6, (unsigned long long)result.rays,
         (unsigned long long)result.nonfinite, accel_name(settings.accel),
-        result.interrupted ? " interrupted=1" : "");
+        (unsigned long long)result.bytes_to_device, (unsigned long long)result.bytes_from_device,
+        result.stopped ? " interrupted=1" : "");
     if (result.shares.size() > 1 || mpi)
         for (const auto& s : result.shares)
             std::printf("device: \"%s\" chunks=%llu spp=%llu share=%.1f%% msamples_per_s=%.3f\n", s.device.c_str(),

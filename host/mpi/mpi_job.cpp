@@ -73,8 +73,13 @@ void MpiJob::check_same(std::uint64_t value, const std::string& what) {
                     " differ from rank 0 (every rank must be given the same scene, files and options)");
 }
 
-void MpiJob::run_chunks(ChunkQueue* queue, RemoteChunks* remote, DeviceFarm& farm,
-                        const std::function<void()>& poll) {
+ChunkSource& MpiJob::chunk_source(ChunkQueue& lead_queue) {
+    if (rank_ == 0) return lead_queue;
+    remote_ = std::make_unique<RemoteChunks>();
+    return *remote_;
+}
+
+void MpiJob::run_chunks(ChunkQueue& queue, DeviceFarm& farm, const std::function<void()>& poll) {
     using namespace std::chrono_literals;
     if (rank_ == 0) {
         int goodbyes = 0;
@@ -90,7 +95,7 @@ void MpiJob::run_chunks(ChunkQueue* queue, RemoteChunks* remote, DeviceFarm& far
                     ++goodbyes;
                 } else {
                     WireChunk w{};
-                    if (std::optional<Chunk> c = queue->next()) w = {c->index, c->first_sample, c->samples, 1, 0};
+                    if (std::optional<Chunk> c = queue.next()) w = {c->index, c->first_sample, c->samples, 1, 0};
                     check(MPI_Send(&w, sizeof w, MPI_BYTE, st.MPI_SOURCE, kTagReply, MPI_COMM_WORLD), "MPI_Send");
                 }
                 continue;
@@ -100,6 +105,8 @@ void MpiJob::run_chunks(ChunkQueue* queue, RemoteChunks* remote, DeviceFarm& far
         }
         return;
     }
+    if (!remote_) throw Error("internal: MpiJob::run_chunks before chunk_source");
+    RemoteChunks* remote = remote_.get();
     bool exhausted = false;
     while (!farm.finished()) {
         bool want = false;
@@ -154,7 +161,7 @@ void MpiJob::reduce_film(ExactFilm& film) {
 std::vector<DeviceShare> MpiJob::gather_shares(const std::vector<DeviceShare>& local) {
     struct Wire {
         char device[96];
-        std::uint64_t chunks, spp, rays, nonfinite;
+        std::uint64_t chunks, spp, rays, nonfinite, to_device, from_device;
         double busy;
     };
     std::string mine;
@@ -167,6 +174,8 @@ std::vector<DeviceShare> MpiJob::gather_shares(const std::vector<DeviceShare>& l
         w.rays = s.rays;
         w.nonfinite = s.nonfinite;
         w.busy = s.busy_seconds;
+        w.to_device = s.bytes_to_device;
+        w.from_device = s.bytes_from_device;
         mine.append(reinterpret_cast<const char*>(&w), sizeof w);
     }
     std::vector<DeviceShare> out;
@@ -174,7 +183,7 @@ std::vector<DeviceShare> MpiJob::gather_shares(const std::vector<DeviceShare>& l
         for (std::size_t at = 0; at + sizeof(Wire) <= bytes.size(); at += sizeof(Wire)) {
             Wire w;
             std::memcpy(&w, bytes.data() + at, sizeof w);
-            out.push_back({w.device, w.chunks, w.spp, w.rays, w.nonfinite, w.busy});
+            out.push_back({w.device, w.chunks, w.spp, w.rays, w.nonfinite, w.busy, w.to_device, w.from_device});
         }
     return out;
 }

@@ -16,21 +16,26 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
 #include "render/chunks.hpp"
 #include "render/device_farm.hpp"
 #include "render/exact_film.hpp"
+#include "render/process_group.hpp"
 
 namespace clpath {
 
-class MpiJob {
+class RemoteChunks;
+
+class MpiJob : public ProcessGroup {
 public:
     MpiJob(int* argc, char*** argv);
     ~MpiJob();
     MpiJob(const MpiJob&) = delete;
     MpiJob& operator=(const MpiJob&) = delete;
 
-    int rank() const { return rank_; }
-    int size() const { return size_; }
+    int rank() const override { return rank_; }
+    int size() const override { return size_; }
     const std::string& host() const { return host_; }
 
     // Ends every rank at once (a rank's error must not leave the others waiting).
@@ -38,26 +43,26 @@ public:
 
     // Throws clpath::Error on every rank, naming the ranks whose value differs
     // from rank 0's (e.g. a hash of the scene and settings).
-    void check_same(std::uint64_t value, const std::string& what);
+    void check_same(std::uint64_t value, const std::string& what) override;
 
-    // Rank 0: serves `queue` to the other ranks until each has said it is
-    // finished, calling poll() between messages, while `farm` renders this
-    // rank's share. Other ranks: feeds `remote` from rank 0 while `farm`
+    // Rank 0: `lead_queue`. Other ranks: a fresh source fed by run_chunks
+    // with the chunks rank 0 hands out.
+    ChunkSource& chunk_source(ChunkQueue& lead_queue) override;
+    // Rank 0: serves `lead_queue` to the other ranks until each has said it
+    // is finished, calling poll() between messages, while `farm` renders this
+    // rank's share. Other ranks: fetch chunks from rank 0 while `farm`
     // renders. Returns when this rank's farm is finished and, on rank 0, every
     // rank has said goodbye.
-    void run_chunks(ChunkQueue* queue, class RemoteChunks* remote, DeviceFarm& farm,
-                    const std::function<void()>& poll);
+    void run_chunks(ChunkQueue& lead_queue, DeviceFarm& farm, const std::function<void()>& poll) override;
 
-    // Sums every rank's film into rank 0's (the others' are left unchanged).
-    void reduce_film(ExactFilm& film);
-    // Every rank's bytes, gathered on rank 0 in rank order (empty elsewhere).
-    std::vector<std::string> gather_bytes(const std::string& mine);
-    // Every rank's device shares, gathered on rank 0 (named "rank R: device").
-    std::vector<DeviceShare> gather_shares(const std::vector<DeviceShare>& local);
+    void reduce_film(ExactFilm& film) override;
+    std::vector<std::string> gather_bytes(const std::string& mine) override;
+    std::vector<DeviceShare> gather_shares(const std::vector<DeviceShare>& local) override;
 
 private:
     int rank_ = 0, size_ = 1;
     std::string host_;
+    std::unique_ptr<RemoteChunks> remote_;
 };
 
 // The chunk source of a rank other than 0: device threads wait here for the

@@ -29,8 +29,9 @@ std::uint32_t default_chunk_samples(std::uint64_t total_samples) {
     return std::uint32_t(std::clamp<std::uint64_t>(total_samples / 64, 1, 64));
 }
 
-ChunkQueue::ChunkQueue(ChunkPlan plan, double time_budget_seconds, std::vector<std::uint64_t> done)
-    : plan_(plan), has_deadline_(time_budget_seconds > 0), done_(std::move(done)) {
+ChunkQueue::ChunkQueue(ChunkPlan plan, double time_budget_seconds, std::vector<std::uint64_t> done, Clock clock)
+    : plan_(plan), has_deadline_(time_budget_seconds > 0), done_(std::move(done)), clock_(std::move(clock)) {
+    if (!clock_) clock_ = [] { return std::chrono::steady_clock::now(); };
     if (plan_.chunk_samples == 0) throw Error("internal: chunks of 0 samples");
     std::sort(done_.begin(), done_.end());
     budget_ = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -40,7 +41,7 @@ ChunkQueue::ChunkQueue(ChunkPlan plan, double time_budget_seconds, std::vector<s
 double ChunkQueue::seconds_since_start() {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!started_) return 0;
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - (deadline_ - budget_)).count();
+    return std::chrono::duration<double>(clock_() - (deadline_ - budget_)).count();
 }
 
 std::optional<Chunk> ChunkQueue::next() {
@@ -49,11 +50,11 @@ std::optional<Chunk> ChunkQueue::next() {
     // uploads do not eat into it.
     if (!started_) {
         started_ = true;
-        deadline_ = std::chrono::steady_clock::now() + budget_;
+        deadline_ = clock_() + budget_;
     }
     for (;;) {
         if (stopped_) return std::nullopt;
-        if (has_deadline_ && std::chrono::steady_clock::now() >= deadline_) return std::nullopt;
+        if (has_deadline_ && clock_() >= deadline_) return std::nullopt;
         const std::uint64_t count = plan_.chunk_count();
         if (count && next_ >= count) return std::nullopt;
         if (std::uint64_t(next_) * plan_.chunk_samples >= 0x100000000ull) return std::nullopt;

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <vector>
@@ -48,7 +49,10 @@ public:
 // Chunks listed as done (a resumed render) are skipped. Thread-safe.
 class ChunkQueue : public ChunkSource {
 public:
-    ChunkQueue(ChunkPlan plan, double time_budget_seconds, std::vector<std::uint64_t> done = {});
+    using Clock = std::function<std::chrono::steady_clock::time_point()>;
+    // clock: the time the budget is counted in; default steady_clock::now
+    // (tests pass a fake one, so that a deadline does not depend on scheduling).
+    ChunkQueue(ChunkPlan plan, double time_budget_seconds, std::vector<std::uint64_t> done = {}, Clock clock = {});
     std::optional<Chunk> next() override;
     void stop() { stopped_ = true; }
     // Seconds since the first chunk was handed out (0 before).
@@ -64,6 +68,7 @@ private:
     std::mutex mutex_;
     std::uint64_t next_ = 0;
     std::atomic<bool> stopped_{false};
+    Clock clock_;
 };
 
 }  // namespace clpath

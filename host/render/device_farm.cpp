@@ -11,15 +11,16 @@ namespace clpath {
 DeviceFarm::DeviceFarm(std::vector<DeviceInfo> devices, const Scene& scene, const RenderSettings& settings,
                        ExactFilm start, std::vector<std::uint64_t> start_chunks)
     : devices_(std::move(devices)), settings_(settings), scene_camera_(scene.camera),
-      film_(std::move(start)), done_(std::move(start_chunks)) {
+      start_(std::move(start)), start_done_(std::move(start_chunks)) {
     if (devices_.empty()) throw Error("internal: a device farm with no device");
     // The BVH, light table and environment are built once, for every device.
     prepared_ = prepare_scene(scene, settings_);
-    if (film_.width() == 0) film_ = ExactFilm(scene.camera.width, scene.camera.height);
-    if (film_.width() != scene.camera.width || film_.height() != scene.camera.height)
+    if (start_.width() == 0) start_ = ExactFilm(scene.camera.width, scene.camera.height);
+    if (start_.width() != scene.camera.width || start_.height() != scene.camera.height)
         throw Error("internal: the starting film does not match the camera");
-    spp_ = film_.samples_per_pixel();
+    spp_ = start_.samples_per_pixel();
     shares_.resize(devices_.size());
+    published_.resize(devices_.size());
     for (std::size_t i = 0; i < devices_.size(); ++i) shares_[i].device = devices_[i].name;
 }
 
@@ -40,6 +41,8 @@ void DeviceFarm::start(ChunkSource& source, std::function<void(std::uint64_t)> o
                 std::lock_guard<std::mutex> lock(mutex_);
                 if (!error_) error_ = std::current_exception();
                 cancel_ = true;  // the others stop at their next launch
+                published_[i].exited = true;  // a snapshot must not wait for it
+                published_cv_.notify_all();
             }
             --running_;
         });
@@ -48,53 +51,75 @@ void DeviceFarm::start(ChunkSource& source, std::function<void(std::uint64_t)> o
 void DeviceFarm::run_device(std::size_t i, ChunkSource& source) {
     const DeviceInfo& device = devices_[i];
     Context ctx(device);
-    Renderer renderer = [&] {
+    auto on_device = [&](auto make) {
         try {
-            return Renderer(ctx, *prepared_, settings_);
+            return make();
         } catch (const Error& e) {
             throw Error("device [" + std::to_string(device.index) + "] " + device.name + ": " + e.what());
         }
-    }();
-    // A chunk is rendered into an empty film whose sample count starts at the
-    // chunk's first sample index, so the kernels draw that chunk's samples.
-    FilmState empty{scene_camera_.width, scene_camera_.height, 0,
-                    std::vector<AccumPixel>(std::size_t(scene_camera_.width) * std::size_t(scene_camera_.height))};
+    };
+    Renderer renderer = on_device([&] { return Renderer(ctx, *prepared_, settings_); });
+    DeviceExactFilm exact = on_device([&] { return DeviceExactFilm(ctx, scene_camera_.width, scene_camera_.height); });
+    std::vector<std::uint64_t> done;
     std::chrono::steady_clock::time_point first{}, last{};
     while (!cancel_) {
         const std::optional<Chunk> chunk = source.next();
         if (!chunk) break;
         if (first == std::chrono::steady_clock::time_point{}) first = std::chrono::steady_clock::now();
-        renderer.reset();
-        empty.samples_per_pixel = chunk->first_sample;
-        renderer.film().write_state(empty);
+        // The film is empty (new, or emptied by the last add_chunk_to); its
+        // sample count starts at the chunk's first sample index, so the
+        // kernels draw that chunk's samples.
+        renderer.start_chunk(chunk->first_sample);
         // A chunk is added in a few steps, so that a cancel is seen within one
         // step; the samples and their order do not depend on the steps.
         const std::uint32_t step = std::max<std::uint32_t>(1, (chunk->samples + 3) / 4);
-        for (std::uint32_t done = 0; done < chunk->samples && !cancel_;) {
-            const std::uint32_t n = std::min(step, chunk->samples - done);
-            renderer.add_samples(n);
-            done += n;
+        for (std::uint32_t n = 0; n < chunk->samples && !cancel_;) {
+            const std::uint32_t k = std::min(step, chunk->samples - n);
+            renderer.add_samples(k);
+            n += k;
         }
         if (cancel_) break;  // an unfinished chunk is dropped whole
-        const FilmState state = renderer.film().read_state();
-        const RenderStats stats = renderer.stats();
+        renderer.add_chunk_to(exact, chunk->samples);
+        done.push_back(chunk->index);
         last = std::chrono::steady_clock::now();
         std::uint64_t spp;
         {
             std::lock_guard<std::mutex> lock(mutex_);
-            film_.add_chunk(state.pixels, chunk->samples);
-            done_.push_back(chunk->index);
+            published_[i].has_chunks = true;
             DeviceShare& s = shares_[i];
             ++s.chunks;
             s.samples_per_pixel += chunk->samples;
-            s.rays += stats.rays;
-            s.nonfinite += stats.nonfinite;
             s.busy_seconds = std::chrono::duration<double>(last - first).count();
-            spp = film_.samples_per_pixel();
-            spp_ = spp;
+            spp = spp_ += chunk->samples;
         }
         if (on_chunk_) on_chunk_(spp);
+        answer_snapshot(i, exact, done, false);
     }
+    const RenderStats stats = renderer.stats();
+    answer_snapshot(i, exact, done, true);
+    std::lock_guard<std::mutex> lock(mutex_);
+    shares_[i].rays = stats.rays;
+    shares_[i].nonfinite = stats.nonfinite;
+    shares_[i].bytes_to_device = ctx.bytes_to_device();
+    shares_[i].bytes_from_device = ctx.bytes_from_device();
+}
+
+void DeviceFarm::answer_snapshot(std::size_t i, const DeviceExactFilm& film, const std::vector<std::uint64_t>& done,
+                                 bool final) {
+    std::uint64_t request;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        request = snapshot_request_;
+        if (!final && published_[i].answered >= request) return;
+    }
+    // Read outside the lock: the other devices go on meanwhile.
+    ExactFilm f = published_[i].has_chunks ? film.read() : ExactFilm();
+    std::lock_guard<std::mutex> lock(mutex_);
+    published_[i].film = std::move(f);
+    published_[i].done = done;
+    published_[i].answered = request;
+    published_[i].exited = final;
+    published_cv_.notify_all();
 }
 
 void DeviceFarm::wait() {
@@ -105,9 +130,29 @@ void DeviceFarm::wait() {
 }
 
 ExactFilm DeviceFarm::snapshot(std::vector<std::uint64_t>* done_chunks) const {
+    std::unique_lock<std::mutex> lock(mutex_);
+    const std::uint64_t request = ++snapshot_request_;
+    // A device with no chunk yet has nothing to give; one whose thread ended
+    // (finished, cancelled or failed) gave its final film.
+    published_cv_.wait(lock, [&] {
+        for (const Published& p : published_)
+            if (p.has_chunks && !p.exited && p.answered < request) return false;
+        return true;
+    });
+    ExactFilm film = start_;
+    std::vector<std::uint64_t> done = start_done_;
+    for (const Published& p : published_) {
+        if (p.film.width() == 0) continue;
+        film.add(p.film);
+        done.insert(done.end(), p.done.begin(), p.done.end());
+    }
+    if (done_chunks) *done_chunks = std::move(done);
+    return film;
+}
+
+std::vector<DeviceShare> DeviceFarm::shares() const {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (done_chunks) *done_chunks = done_;
-    return film_;
+    return shares_;
 }
 
 const BvhStats& DeviceFarm::bvh_stats() const { return prepared_->summary.bvh_stats; }

@@ -1,8 +1,12 @@
 #pragma once
 // One renderer per OpenCL device, each on its own host thread, all taking
-// chunks of samples from one source and adding their totals to one exact
-// film. The image is the same bits whichever device rendered which chunk.
+// chunks of samples from one source. Each device adds its chunks' totals to an
+// exact film of its own, on the device (render/device_exact_film.hpp); the
+// host reads them only when asked for the image (snapshot: a checkpoint, the
+// end) and adds them as integers, so the image is the same bits whichever
+// device rendered which chunk, and no film crosses the bus per chunk.
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
 #include <exception>
 #include <functional>
@@ -14,6 +18,7 @@
 
 #include "cl/device.hpp"
 #include "render/chunks.hpp"
+#include "render/device_exact_film.hpp"
 #include "render/exact_film.hpp"
 #include "render/prepared_scene.hpp"
 #include "render/renderer.hpp"
@@ -27,6 +32,7 @@ struct DeviceShare {
     std::uint64_t samples_per_pixel = 0;  // its share of the image's samples
     std::uint64_t rays = 0, nonfinite = 0;
     double busy_seconds = 0;  // from its first chunk's start to its last one's end
+    std::uint64_t bytes_to_device = 0, bytes_from_device = 0;  // scene, films, counters: every transfer
 };
 
 class DeviceFarm {
@@ -50,21 +56,40 @@ public:
     // Joins the threads; rethrows the first device's error.
     void wait();
 
-    // A consistent copy of the film and the chunks it holds, at any time.
+    // A consistent copy of the film and the chunks it holds, at any time:
+    // every device that has rendered a chunk reads its film back at its next
+    // chunk boundary (so this waits for up to one chunk), and the films are
+    // added. After wait(), the final image.
     ExactFilm snapshot(std::vector<std::uint64_t>* done_chunks = nullptr) const;
-    const std::vector<DeviceShare>& shares() const { return shares_; }
+    // After wait(): what each device did (rays and bytes are counted when a device finishes).
+    std::vector<DeviceShare> shares() const;
     const BvhStats& bvh_stats() const;
 
 private:
+    // A device's film as it last read it back, and the chunks in it.
+    struct Published {
+        ExactFilm film;
+        std::vector<std::uint64_t> done;
+        std::uint64_t answered = 0;  // the snapshot request it answered last
+        bool has_chunks = false;     // it has added a chunk to its device film
+        bool exited = false;         // its thread has ended (its film is final)
+    };
+
     void run_device(std::size_t i, ChunkSource& source);
+    // On device i's thread: reads its film back when a snapshot waits for it.
+    void answer_snapshot(std::size_t i, const DeviceExactFilm& film, const std::vector<std::uint64_t>& done,
+                         bool final);
 
     std::vector<DeviceInfo> devices_;
     RenderSettings settings_;
     Camera scene_camera_;
     std::shared_ptr<const PreparedScene> prepared_;
     mutable std::mutex mutex_;
-    ExactFilm film_;
-    std::vector<std::uint64_t> done_;
+    mutable std::condition_variable published_cv_;
+    mutable std::uint64_t snapshot_request_ = 0;
+    ExactFilm start_;                      // a resumed render's sums
+    std::vector<std::uint64_t> start_done_;  // and its chunks
+    std::vector<Published> published_;
     std::vector<DeviceShare> shares_;
     std::vector<std::thread> threads_;
     std::atomic<int> running_{0};

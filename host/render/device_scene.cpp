@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "util/error.hpp"
+
 namespace clpath {
 namespace {
 
@@ -34,31 +36,38 @@ std::vector<std::pair<std::string, std::size_t>> DeviceScene::memory_needs(const
                              std::max<std::size_t>(16, s.surface.texels.size() * sizeof(std::uint32_t))}};
 }
 
+const std::vector<std::string>& scene_buffer_names() {
+#define CLP_SCENE_BUFFER_TEXT(type, name) #name,
+    static const std::vector<std::string> names{CLP_SCENE_BUFFERS(CLP_SCENE_BUFFER_TEXT)};
+#undef CLP_SCENE_BUFFER_TEXT
+    return names;
+}
+
 DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s) : ctx_(ctx), summary_(s.summary) {
     ctx.check_fits(memory_needs(s));
     const std::vector<unsigned char> node_bytes = device_nodes(s.summary.accel, s.accel);
-    nodes_ = ctx.buffer(node_bytes.size(), CL_MEM_READ_ONLY, "BVH nodes", node_bytes.data());
-    tris_ = ctx.buffer(s.accel.triangles.size() * sizeof(TriVerts), CL_MEM_READ_ONLY, "triangles",
+    slot(SceneBuffer::nodes) = ctx.buffer(node_bytes.size(), CL_MEM_READ_ONLY, "BVH nodes", node_bytes.data());
+    slot(SceneBuffer::tris) = ctx.buffer(s.accel.triangles.size() * sizeof(TriVerts), CL_MEM_READ_ONLY, "triangles",
                        s.accel.triangles.data());
-    tri_material_ = ctx.buffer(s.triangle_material.size() * sizeof(std::uint32_t), CL_MEM_READ_ONLY,
+    slot(SceneBuffer::tri_material) = ctx.buffer(s.triangle_material.size() * sizeof(std::uint32_t), CL_MEM_READ_ONLY,
                                "triangle materials", s.triangle_material.data());
-    materials_ =
+    slot(SceneBuffer::materials) =
         ctx.buffer(s.materials.size() * sizeof(Material), CL_MEM_READ_ONLY, "materials", s.materials.data());
     const MaterialExt no_ext{};
-    material_ext_ = ctx.buffer(material_ext_bytes(s), CL_MEM_READ_ONLY, "material extensions",
+    slot(SceneBuffer::material_ext) = ctx.buffer(material_ext_bytes(s), CL_MEM_READ_ONLY, "material extensions",
                                s.material_ext.empty() ? static_cast<const void*>(&no_ext) : s.material_ext.data());
     const std::vector<float> zeros(16, 0.0f);
-    normals_ = ctx.buffer(normal_bytes(s), CL_MEM_READ_ONLY, "shading normals",
+    slot(SceneBuffer::normals) = ctx.buffer(normal_bytes(s), CL_MEM_READ_ONLY, "shading normals",
                           s.normals.empty() ? static_cast<const void*>(zeros.data()) : s.normals.data());
     const Light no_light{};
     const AliasEntry no_alias{};
-    lights_ = ctx.buffer(light_bytes(s), CL_MEM_READ_ONLY, "lights",
+    slot(SceneBuffer::lights) = ctx.buffer(light_bytes(s), CL_MEM_READ_ONLY, "lights",
                          s.lights.empty() ? static_cast<const void*>(&no_light) : s.lights.data());
-    alias_ = ctx.buffer(alias_bytes(s), CL_MEM_READ_ONLY, "light alias table",
+    slot(SceneBuffer::alias) = ctx.buffer(alias_bytes(s), CL_MEM_READ_ONLY, "light alias table",
                         s.light_alias.empty() ? static_cast<const void*>(&no_alias) : s.light_alias.data());
-    env_pixels_ = ctx.buffer(s.environment.pixels.size() * sizeof(float), CL_MEM_READ_ONLY, "environment image",
+    slot(SceneBuffer::env_pixels) = ctx.buffer(s.environment.pixels.size() * sizeof(float), CL_MEM_READ_ONLY, "environment image",
                              s.environment.pixels.data());
-    env_cdf_ = ctx.buffer(s.environment.cdf.size() * sizeof(float), CL_MEM_READ_ONLY, "environment distribution",
+    slot(SceneBuffer::env_cdf) = ctx.buffer(s.environment.cdf.size() * sizeof(float), CL_MEM_READ_ONLY, "environment distribution",
                           s.environment.cdf.data());
     // Texture coordinates, tangents, colours and textures: a 16-byte stand-in when the scene has none.
     auto upload = [&](std::size_t bytes, const void* data, const char* what) {
@@ -66,16 +75,15 @@ DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s) : ctx_(ctx), summ
                      : ctx.buffer(16, CL_MEM_READ_ONLY, what, zeros.data());
     };
     const SurfaceBuffers& sb = s.surface;
-    attrs_ = upload(sb.attrs.size() * sizeof(float), sb.attrs.data(), "surface attributes");
-    tex_desc_ = upload(sb.textures.size() * sizeof(TextureDesc), sb.textures.data(), "texture descriptors");
-    texels_ = upload(sb.texels.size() * sizeof(std::uint32_t), sb.texels.data(), "texels");
+    slot(SceneBuffer::attrs) = upload(sb.attrs.size() * sizeof(float), sb.attrs.data(), "surface attributes");
+    slot(SceneBuffer::tex_desc) = upload(sb.textures.size() * sizeof(TextureDesc), sb.textures.data(), "texture descriptors");
+    slot(SceneBuffer::texels) = upload(sb.texels.size() * sizeof(std::uint32_t), sb.texels.data(), "texels");
+    for (std::size_t i = 0; i < buffers_.size(); ++i)
+        if (!buffers_[i].get()) throw Error("internal: the scene buffer '" + scene_buffer_names()[i] + "' was not uploaded");
 }
 
 void DeviceScene::bind(Kernel& k, cl_uint first) const {
-    const Buffer* args[kArgCount] = {&nodes_,   &tris_,       &tri_material_, &materials_, &material_ext_,
-                                     &normals_, &lights_,     &alias_,        &env_pixels_, &env_cdf_,
-                                     &attrs_,   &tex_desc_,   &texels_};
-    for (cl_uint i = 0; i < kArgCount; ++i) k.arg(first + i, *args[i]);
+    for (cl_uint i = 0; i < kArgCount; ++i) k.arg(first + i, buffers_[i]);
 }
 
 }  // namespace clpath

@@ -2,6 +2,7 @@
 // A prepared scene's arrays on one device: geometry, acceleration structure,
 // materials, lights and environment, uploaded once and read by every launch.
 // Several DeviceScenes (one per Context) can be made from one PreparedScene.
+#include <array>
 #include <cstddef>
 #include <string>
 #include <utility>
@@ -11,6 +12,17 @@
 #include "render/prepared_scene.hpp"
 
 namespace clpath {
+
+// The scene's buffers, named and ordered by the one table the kernels'
+// parameter lists come from (CLP_SCENE_BUFFERS, kernels/shared_structs.h).
+enum class SceneBuffer : cl_uint {
+#define CLP_SCENE_BUFFER_NAME(type, name) name,
+    CLP_SCENE_BUFFERS(CLP_SCENE_BUFFER_NAME)
+#undef CLP_SCENE_BUFFER_NAME
+        count
+};
+// The buffers' parameter names, in order (for checking a kernel's arguments).
+const std::vector<std::string>& scene_buffer_names();
 
 class DeviceScene {
 public:
@@ -22,24 +34,23 @@ public:
     static std::vector<std::pair<std::string, std::size_t>> memory_needs(const PreparedScene& scene);
 
     // Number of kernel arguments bind() sets.
-    static constexpr cl_uint kArgCount = 13;
-    // Sets the arrays as arguments first ... first + kArgCount - 1, in the
-    // order of render_paths' parameters (kernels/integrator.cl): nodes,
-    // triangles, triangle materials, materials, material extensions, normals, lights, alias table,
-    // environment image, environment distribution, surface attributes,
-    // texture descriptors, texels.
+    static constexpr cl_uint kArgCount = cl_uint(SceneBuffer::count);
+    // Sets the buffers as arguments first ... first + kArgCount - 1, in the
+    // table's order (a kernel declares them with CLP_SCENE_PARAMS).
     void bind(Kernel& kernel, cl_uint first = 0) const;
 
     const SceneSummary& summary() const { return summary_; }
     Context& context() const { return ctx_; }
     // The BVH nodes' buffer (so a caller can tell that it was not uploaded again).
-    const Buffer& nodes() const { return nodes_; }
+    const Buffer& nodes() const { return buffer(SceneBuffer::nodes); }
+    const Buffer& buffer(SceneBuffer b) const { return buffers_[std::size_t(b)]; }
 
 private:
+    Buffer& slot(SceneBuffer b) { return buffers_[std::size_t(b)]; }
+
     Context& ctx_;
     SceneSummary summary_;
-    Buffer nodes_, tris_, tri_material_, materials_, material_ext_, normals_, lights_, alias_, env_pixels_, env_cdf_;
-    Buffer attrs_, tex_desc_, texels_;
+    std::array<Buffer, kArgCount> buffers_;
 };
 
 }  // namespace clpath

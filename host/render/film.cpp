@@ -29,6 +29,13 @@ void Film::clear() {
     samples_per_pixel_ = 0;
 }
 
+void Film::start_chunk_at(std::uint64_t first_sample) {
+    if (first_sample > kMaxSamplesPerPixel)
+        throw Error("a chunk starting at sample " + std::to_string(first_sample) + ": at most " +
+                    std::to_string(kMaxSamplesPerPixel) + " samples per pixel");
+    samples_per_pixel_ = first_sample;
+}
+
 void Film::count_samples(std::uint32_t n) {
     if (samples_per_pixel_ + n > kMaxSamplesPerPixel)
         throw Error("at most " + std::to_string(kMaxSamplesPerPixel) + " samples per pixel can be accumulated");

@@ -42,6 +42,10 @@ public:
 
     // Back to no samples.
     void clear();
+    // An empty film (new, or emptied by DeviceExactFilm::add_chunk) that
+    // takes samples from the index first_sample on: a chunk of a chunked
+    // render. Touches no device memory.
+    void start_chunk_at(std::uint64_t first_sample);
     // Records that the kernels have added n samples to every pixel. The
     // integrator's launches call it; the sample index of the next launch starts here.
     void count_samples(std::uint32_t n);

@@ -42,11 +42,13 @@ void IntegratorProgram::compile() {
     BuildResult built = build_program(ctx_, variant_source(spec.roots, variant_), variant_options(spec.options, variant_));
     render_ = Kernel();
     resolve_ = Kernel();
+    add_exact_ = Kernel();
     program_ = std::move(built.program);
     compile_seconds_ = built.seconds;
     from_cache_ = built.from_cache;
     render_ = ctx_.kernel(program_.get(), "render_paths");
     resolve_ = ctx_.kernel(program_.get(), "film_resolve");
+    add_exact_ = ctx_.kernel(program_.get(), "film_add_exact");
 }
 
 void IntegratorProgram::set_settings(const RenderSettings& settings) {
@@ -71,7 +73,6 @@ void IntegratorProgram::launch_band(const DeviceScene& scene, Film& film, const 
     fp.seed = settings_.seed;
     fp.first_sample = std::uint32_t(film.samples_per_pixel());
     fp.samples = samples;
-    fp.max_depth = settings_.max_depth;
     fp.rr_rule = settings_.rr_rule;
     fp.rr_min_depth = settings_.rr_min_depth;
     fp.pixel_offset = first_pixel;
@@ -90,26 +91,51 @@ void IntegratorProgram::launch_band(const DeviceScene& scene, Film& film, const 
     fp.env_rot_sin = std::sin(sc.environment_rotation);
     fp.scene_flags = (sc.features.normals ? CLP_SCENE_NORMALS : 0u) | sc.surface_flags;
     fp.attr_stride = sc.attr_stride;
-    const Counters zero{};
-    ctx_.write(params_, &fp, sizeof fp);
-    ctx_.write(counters_, &zero, sizeof zero);
+    // Enqueued without waiting: the parameters are read from this slot's
+    // copy, the counters land in it; the slot is harvested when it comes
+    // round again or when add_samples ends, so the device always has the
+    // next launch queued.
+    PendingLaunch& p = pending_[next_slot_];
+    next_slot_ = (next_slot_ + 1) % pending_.size();
+    harvest(p);
+    p.params = fp;
+    p.work = double(pixel_count) * samples;
+    ctx_.write_async(params_, &p.params, sizeof p.params);
+    ctx_.fill_async(counters_, 0);
     scene.bind(render_, 0);
     render_.arg(DeviceScene::kArgCount, params_)
         .arg(DeviceScene::kArgCount + 1, film.accumulation_buffer())
         .arg(DeviceScene::kArgCount + 2, counters_);
-    const auto t0 = std::chrono::steady_clock::now();
-    ctx_.launch(render_, pixel_count, kWorkGroup);
-    Counters c{};
-    ctx_.read(counters_, &c, sizeof c);  // blocking: the launch has finished
-    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    stats_.render_seconds += dt;
-    stats_.rays += c.rays;
-    stats_.nonfinite += c.nonfinite;
+    p.kernel = ctx_.launch(render_, pixel_count, kWorkGroup, true);
+    p.counters_read = ctx_.read_async(counters_, &p.counters, sizeof p.counters, true);
+}
+
+void IntegratorProgram::harvest(PendingLaunch& p) {
+    if (!p.counters_read) return;
+    const cl_int rc = clWaitForEvents(1, &p.counters_read);
+    clReleaseEvent(p.counters_read);
+    p.counters_read = nullptr;
+    const double dt = event_seconds(p.kernel);  // releases it
+    p.kernel = nullptr;
+    cl_check(rc, "waiting for a render launch");
+    stats_.rays += p.counters.rays;
+    stats_.nonfinite += p.counters.nonfinite;
     ++stats_.launches;
-    const double work = double(pixel_count) * samples;
     // Smoothed, so one slow launch does not swing the next one's size.
-    const double s = dt / work;
+    const double s = dt / p.work;
     seconds_per_pixel_sample_ = seconds_per_pixel_sample_ > 0 ? 0.5 * (seconds_per_pixel_sample_ + s) : s;
+}
+
+void IntegratorProgram::drain() {
+    for (std::size_t k = 0; k < pending_.size(); ++k) harvest(pending_[(next_slot_ + k) % pending_.size()]);
+}
+
+IntegratorProgram::~IntegratorProgram() {
+    try {
+        drain();
+    } catch (...) {
+        // A failed device: its events are released as far as they can be.
+    }
 }
 
 void IntegratorProgram::add_samples(const DeviceScene& scene, Film& film, const Camera& camera, std::uint32_t n) {
@@ -125,6 +151,7 @@ void IntegratorProgram::add_samples(const DeviceScene& scene, Film& film, const 
     // sample below 2^32, by fewer samples per launch and, where one sample of
     // every pixel is already too much (a 16384^2 film at depth 1024), by bands.
     const double max_work = double(0xffffffffu) / double(max_rays_per_sample(settings_));
+    const auto t0 = std::chrono::steady_clock::now();
     while (n > 0) {
         const double target = settings_.target_launch_seconds;
         std::uint32_t samples = 1, band = all;
@@ -142,11 +169,15 @@ void IntegratorProgram::add_samples(const DeviceScene& scene, Film& film, const 
         samples = std::uint32_t(std::min<double>(samples, std::max(1.0, max_work / all)));
         if (double(band) * samples > max_work)
             band = std::max<std::uint32_t>(kWorkGroup, std::uint32_t(max_work / samples) / kWorkGroup * kWorkGroup);
-        for (std::uint32_t first = 0; first < all; first += band)
+        for (std::uint32_t first = 0; first < all; first += band) {
             launch_band(scene, film, cam, first, std::min(band, all - first), samples);
+            if (seconds_per_pixel_sample_ <= 0) drain();  // the first launch measures the next ones' size
+        }
         film.count_samples(samples);
         n -= samples;
     }
+    drain();
+    stats_.render_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace clpath

@@ -3,6 +3,7 @@
 // features a scene and settings need (kernel_features.hpp), built or loaded
 // through the binary cache, and the launches that add samples to a film,
 // sized to a time target and to the kernels' 32-bit counters.
+#include <array>
 #include <cstdint>
 
 #include "cl/context.hpp"
@@ -21,7 +22,7 @@ struct LaunchStats {
     std::uint64_t rays = 0;       // every ray traced
     std::uint64_t nonfinite = 0;  // samples dropped as NaN/inf
     std::uint64_t launches = 0;
-    double render_seconds = 0;    // wall time spent in launches, to their completion
+    double render_seconds = 0;    // wall time spent in add_samples, to the launches' completion
 };
 
 // Most rays one sample can trace, for any integrator: a path traces its
@@ -38,6 +39,9 @@ public:
     // A variant (bench render-ab) replaces kernel files and adds build options.
     IntegratorProgram(Context& ctx, const SceneSummary& scene, const RenderSettings& settings,
                       KernelVariant variant = {});
+    ~IntegratorProgram();
+    IntegratorProgram(const IntegratorProgram&) = delete;
+    IntegratorProgram& operator=(const IntegratorProgram&) = delete;
 
     // New settings: the kernels are rebuilt (or loaded from the cache) when the
     // features they need change, e.g. another integrator; the launch timing is
@@ -55,12 +59,27 @@ public:
     void add_samples(const DeviceScene& scene, Film& film, const Camera& camera, std::uint32_t n);
     // The program's film_resolve kernel, for Film::resolve_on_device.
     Kernel& resolve_kernel() { return resolve_; }
+    // Its film_add_exact kernel, for DeviceExactFilm::add_chunk.
+    Kernel& add_exact_kernel() { return add_exact_; }
 
     const LaunchStats& stats() const { return stats_; }
     void reset_stats() { stats_ = LaunchStats{}; }
 
 private:
+    // A launch enqueued and not yet waited for: the host copies its
+    // non-blocking transfers read from and write to, and its events.
+    struct PendingLaunch {
+        FrameParams params{};
+        Counters counters{};
+        cl_event kernel = nullptr, counters_read = nullptr;
+        double work = 0;  // pixels x samples
+    };
+
     void compile();
+    // Waits for a pending launch and takes its counters and time.
+    void harvest(PendingLaunch& p);
+    // Waits for every pending launch.
+    void drain();
     void launch_band(const DeviceScene& scene, Film& film, const CameraData& camera, std::uint32_t first_pixel,
                      std::uint32_t pixel_count, std::uint32_t samples);
 
@@ -71,11 +90,13 @@ private:
     KernelVariant variant_;
     Buffer params_, counters_;
     Program program_;
-    Kernel render_, resolve_;
+    Kernel render_, resolve_, add_exact_;
     LaunchStats stats_;
     double compile_seconds_ = 0;
     bool from_cache_ = false;
     double seconds_per_pixel_sample_ = 0;  // measured; sizes the launches
+    std::array<PendingLaunch, 2> pending_;  // at most two launches in flight
+    std::size_t next_slot_ = 0;
 };
 
 }  // namespace clpath

@@ -1,16 +1,11 @@
 #include "render/kernel_features.hpp"
 
-#include <cctype>
-
 namespace clpath {
 namespace {
-// Indexed by CLP_MAT_*; upper-cased in the CLP_HAS_MAT_* switches.
-const char* const kMaterialNames[CLP_MAT_KIND_COUNT] = {"diffuse", "mirror", "conductor", "dielectric", "gltf"};
-
-std::string upper(std::string s) {
-    for (char& c : s) c = char(std::toupper(static_cast<unsigned char>(c)));
-    return s;
-}
+// Indexed by CLP_MAT_*: the kernels' switch of each kind, from the one table.
+#define CLP_MAT_SWITCH(KIND, name, in_scene_files) " -DCLP_HAS_MAT_" #KIND,
+const char* const kMaterialSwitches[CLP_MAT_KIND_COUNT] = {CLP_MATERIAL_KINDS(CLP_MAT_SWITCH)};
+#undef CLP_MAT_SWITCH
 }  // namespace
 
 SceneFeatures scene_features(const Scene& scene) {
@@ -69,7 +64,7 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
 std::string build_options(const KernelFeatures& f) {
     std::string o = "-cl-std=CL1.2";
     for (std::uint32_t k = 0; k < CLP_MAT_KIND_COUNT; ++k)
-        if (f.materials[k]) o += " -DCLP_HAS_MAT_" + upper(kMaterialNames[k]);
+        if (f.materials[k]) o += kMaterialSwitches[k];
     if (f.emission) o += " -DCLP_HAS_EMISSION";
     if (f.triangle_lights) o += " -DCLP_HAS_TRIANGLE_LIGHTS";
     if (f.delta_lights) o += " -DCLP_HAS_DELTA_LIGHTS";

@@ -11,7 +11,10 @@
 namespace clpath {
 namespace {
 
-const char* const kMaterialNames[CLP_MAT_KIND_COUNT] = {"diffuse", "mirror", "conductor", "dielectric", "gltf"};
+// Indexed by CLP_MAT_*, from the one table of kinds (kernels/shared_structs.h).
+#define CLP_MAT_NAME(KIND, name, in_scene_files) #name,
+const char* const kMaterialNames[CLP_MAT_KIND_COUNT] = {CLP_MATERIAL_KINDS(CLP_MAT_NAME)};
+#undef CLP_MAT_NAME
 
 std::string shape_options(KernelShape shape) { return shape == KernelShape::Gpu ? " -DCLP_TARGET_GPU" : ""; }
 
@@ -115,7 +118,7 @@ ProgramSpec integrator_program(const KernelFeatures& features, KernelShape shape
     p.name = std::string(integrator_name(features.integrator));
     p.roots = renderer_kernel_files();
     p.options = build_options(features) + shape_options(shape);
-    p.kernels = {"render_paths", "film_resolve"};
+    p.kernels = {"render_paths", "film_resolve", "film_add_exact"};
     return p;
 }
 

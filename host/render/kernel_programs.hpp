@@ -34,7 +34,7 @@ struct ProgramSpec {
     std::string covers;                // what selects it (scenes, feature sets), for reports
 };
 
-// The renderer's program for these features (render_paths and film_resolve).
+// The renderer's program for these features (render_paths, film_resolve, film_add_exact).
 ProgramSpec integrator_program(const KernelFeatures& features, KernelShape shape);
 // The ray-batch benchmark's program (clpath bench rays).
 ProgramSpec ray_batch_program(Accel accel, KernelShape shape);

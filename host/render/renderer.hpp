@@ -12,6 +12,7 @@
 #include "bvh/bvh.hpp"
 #include "cl/context.hpp"
 #include "image/image.hpp"
+#include "render/device_exact_film.hpp"
 #include "render/device_scene.hpp"
 #include "render/film.hpp"
 #include "render/integrator_program.hpp"
@@ -53,6 +54,15 @@ public:
     // the cache) when the features they need change, e.g. another integrator.
     void set_settings(const RenderSettings& settings);
     const RenderSettings& settings() const { return program_->settings(); }
+
+    // Chunked renders (render/device_farm.hpp): the film, which must be empty
+    // (new, or emptied by add_chunk_to), takes samples from first_sample on;
+    // after add_samples, add_chunk_to adds them to an exact film on the same
+    // device and empties the film. Nothing is read back.
+    void start_chunk(std::uint64_t first_sample) { film_->start_chunk_at(first_sample); }
+    void add_chunk_to(DeviceExactFilm& exact, std::uint32_t samples) {
+        exact.add_chunk(*film_, program_->add_exact_kernel(), samples);
+    }
 
     // The mean, scaled by exposure, as linear float and 8-bit sRGB, read back.
     RenderedImage resolve(float exposure = 1.0f);

@@ -1,6 +1,14 @@
 #pragma once
 // How to render, apart from what: integrator, depth, roulette, seed, BVH
 // options. The names of the choices are in scene/render_names.hpp.
+//
+// Where each setting lives: a scene file's "render" block holds the scene's
+// defaults (SceneRenderDefaults, read once by settings_from_scene); the
+// command line and the viewer override a RenderSettings, never the scene.
+// From here the kernels get the integrator and the maximum depth as build
+// options (render/kernel_features.hpp: CLP_INTEGRATOR, CLP_MAX_DEPTH), the
+// rest per launch in FrameParams. How many samples, for how long and in what
+// chunks are the render session's (render/render_session.hpp).
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -5,6 +5,22 @@
 #include "util/error.hpp"
 
 namespace clpath {
+
+const char* material_kind_name(std::uint32_t kind) {
+#define CLP_MAT_NAME(KIND, name, in_scene_files) #name,
+    static const char* const names[] = {CLP_MATERIAL_KINDS(CLP_MAT_NAME)};
+#undef CLP_MAT_NAME
+    if (kind >= CLP_MAT_KIND_COUNT) throw Error("internal: material kind " + std::to_string(kind) + " is not in the table");
+    return names[kind];
+}
+
+bool material_kind_in_scene_files(std::uint32_t kind) {
+#define CLP_MAT_IN_FILES(KIND, name, in_scene_files) bool(in_scene_files),
+    static const bool in_files[] = {CLP_MATERIAL_KINDS(CLP_MAT_IN_FILES)};
+#undef CLP_MAT_IN_FILES
+    return kind < CLP_MAT_KIND_COUNT && in_files[kind];
+}
+
 CameraData camera_data(const Camera& c) {
     const glm::vec3 view = c.target - c.eye;
     if (!(glm::length(view) > 0.0f) || !std::isfinite(glm::length(view)))

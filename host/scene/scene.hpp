@@ -124,6 +124,13 @@ inline void store3(float* dst, glm::vec3 v) {
 }
 inline glm::vec3 load3(const float* p) { return {p[0], p[1], p[2]}; }
 
+// A material kind's name in the one table (CLP_MATERIAL_KINDS,
+// kernels/shared_structs.h): "diffuse", "mirror", ...; throws clpath::Error
+// for a kind the table lacks.
+const char* material_kind_name(std::uint32_t kind);
+// Whether scene files name the kind as a material "type" (the table's third column).
+bool material_kind_in_scene_files(std::uint32_t kind);
+
 // Some channel of the material's emission is positive.
 inline bool emits(const Material& m) { return m.emission[0] > 0 || m.emission[1] > 0 || m.emission[2] > 0; }
 

@@ -13,7 +13,7 @@
 #include "cl/device.hpp"
 #include "render/renderer.hpp"
 #include "render/settings.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "util/error.hpp"
 #include "viewer/bvh_overlay.hpp"
 #include "viewer/camera_controller.hpp"
@@ -59,10 +59,11 @@ json vec_json(glm::vec3 v) { return json::array({v.x, v.y, v.z}); }
 Scene load_for_viewer(const ViewerOptions& o, RenderSettings& settings) {
     Scene scene = load_scene(o.scene);
     for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
-    if (o.seed) scene.render.seed = *o.seed;
-    if (o.max_depth) scene.render.max_depth = *o.max_depth;
-    if (o.integrator) scene.render.integrator = *o.integrator;
+    // The scene file's render block gives the defaults; options override the settings.
     settings = settings_from_scene(scene.render);
+    if (o.seed) settings.seed = *o.seed;
+    if (o.max_depth) settings.max_depth = *o.max_depth;
+    if (o.integrator) settings.integrator = parse_integrator(*o.integrator);
     // Launches no longer than a frame keep the window responsive.
     settings.target_launch_seconds = o.frame_ms / 1000.0;
     if (o.width) scene.camera.width = o.width;

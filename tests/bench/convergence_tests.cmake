@@ -20,24 +20,26 @@ if(CLPATH_WITH_OIIO)  # the reference is an EXR
     clpath_cli_test(bench.convergence_missing_csv_folder FAIL
                     ARGS bench convergence ${CLASSIC} --reference ${CONVERGENCE_REF} --quick
                          --csv ${CLI_OUT}/no/such/folder/c.csv
-                    OUTPUT "folder .*no/such/folder does not exist")
+                    OUTPUT "output .*/no/such/folder/c\\.csv: folder .*/no/such/folder does not exist")
     clpath_cli_test(bench.convergence_unknown_scene FAIL
                     ARGS bench convergence no-such-scene --reference ${CONVERGENCE_REF} --quick
                          --csv ${CLI_OUT}/unknown-scene.csv
-                    OUTPUT "no-such-scene" FORBID ${CLI_OUT}/unknown-scene.csv)
+                    OUTPUT "no built-in scene named 'no-such-scene' \\(built-in: " FORBID ${CLI_OUT}/unknown-scene.csv)
 endif()
 clpath_cli_test(bench.convergence_no_reference FAIL ARGS bench convergence ${CLASSIC} --quick
                 OUTPUT "--reference is required")
 clpath_cli_test(bench.convergence_missing_reference FAIL
                 ARGS bench convergence ${CLASSIC} --reference ${CLI_OUT}/no-such-reference.exr
-                OUTPUT "no-such-reference.exr")
+                OUTPUT "--reference: File does not exist: .*/no-such-reference\\.exr")
 clpath_cli_test(bench.convergence_unknown_config FAIL
                 ARGS bench convergence ${CLASSIC} --reference ${CLASSIC} --configs thesis,magic
-                OUTPUT "magic")
+                OUTPUT "--configs: magic not in \\{thesis,cosine,no-rr,throughput-rr,nee-mis,bvh,clpath\\}")
 clpath_cli_test(bench.convergence_zero_spp FAIL
-                ARGS bench convergence ${CLASSIC} --reference ${CLASSIC} --max-spp 0 OUTPUT "max-spp")
+                ARGS bench convergence ${CLASSIC} --reference ${CLASSIC} --max-spp 0
+                OUTPUT "--max-spp: '0' is not a whole number from 1 to 2147483648")
 clpath_cli_test(bench.convergence_reference_not_an_image FAIL
-                ARGS bench convergence ${CLASSIC} --reference ${CLASSIC} --quick OUTPUT "cornell-classic.json")
+                ARGS bench convergence ${CLASSIC} --reference ${CLASSIC} --quick
+                OUTPUT "cannot read .*/scenes/cornell-classic\\.json: ")
 
 # clpath export: writes the three files; refuses glass; names its output rule.
 clpath_cli_test(export.cornell_classic ARGS export ${CLASSIC} ${CLI_OUT}/export-classic.json --width 32 --height 32
@@ -45,4 +47,5 @@ clpath_cli_test(export.cornell_classic ARGS export ${CLASSIC} ${CLI_OUT}/export-
 clpath_cli_test(export.refuses_glass FAIL
                 ARGS export ${CMAKE_SOURCE_DIR}/scenes/cornell-thesis.json ${CLI_OUT}/export-glass.json
                 OUTPUT "cannot export: material 'glass' is a dielectric" FORBID ${CLI_OUT}/export-glass.obj)
-clpath_cli_test(export.needs_json_name FAIL ARGS export ${CLASSIC} ${CLI_OUT}/export.obj OUTPUT "must end in .json")
+clpath_cli_test(export.needs_json_name FAIL ARGS export ${CLASSIC} ${CLI_OUT}/export.obj
+                OUTPUT "output .*/export\\.obj: must end in \\.json \\(the OBJ and MTL go beside it\\)" FORBID ${CLI_OUT}/export.obj)

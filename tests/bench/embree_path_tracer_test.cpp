@@ -11,7 +11,7 @@
 #include "bench/embree_path_tracer.hpp"
 #include "bench/path_agreement.hpp"
 #include "render/renderer.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "support/test_device.hpp"
 #include "util/error.hpp"
 

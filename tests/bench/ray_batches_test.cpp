@@ -12,7 +12,7 @@
 
 #include "bench/ray_batches.hpp"
 #include "cl/embedded_sources.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "support/test_device.hpp"
 #include "util/error.hpp"
 

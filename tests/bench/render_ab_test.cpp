@@ -6,7 +6,7 @@
 
 #include "bench/render_ab.hpp"
 #include "cl/embedded_sources.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "support/test_device.hpp"
 #include "util/error.hpp"
 

@@ -7,7 +7,9 @@ clpath=$1
 out=$2
 mkdir -p "$out"
 rm -f "$out"/ir_* "$out"/ir.ckpt
-args=(render --spp 64 --chunk 4 --width 48 --height 40 --seed 5 -q)
+# Long enough (128 chunks, about 2 s on two cores) that the render is still
+# running when the script has seen its first checkpoint and signals it.
+args=(render --spp 512 --chunk 4 --width 48 --height 40 --seed 5 -q)
 
 # The reference: the same render, uninterrupted.
 "$clpath" "${args[@]}" -o "$out/ir_reference.pfm"
@@ -16,13 +18,15 @@ args=(render --spp 64 --chunk 4 --width 48 --height 40 --seed 5 -q)
 "$clpath" "${args[@]}" --checkpoint 0.05 --checkpoint-file "$out/ir.ckpt" -o "$out/ir_partial.pfm" \
     >"$out/ir_partial.log" 2>&1 &
 pid=$!
-for _ in $(seq 600); do
-    [ -f "$out/ir.ckpt" ] && break
+# The copy is taken at once: the render may finish and remove its own before
+# the signal lands. (A checkpoint is replaced whole, by a rename: a copy is
+# never half of one.)
+for _ in $(seq 1800); do
+    cp "$out/ir.ckpt" "$out/ir_saved.ckpt" 2>/dev/null && break
     kill -0 $pid 2>/dev/null || break
     sleep 0.1
 done
-[ -f "$out/ir.ckpt" ] || { cat "$out/ir_partial.log"; echo "no checkpoint was written"; exit 1; }
-cp "$out/ir.ckpt" "$out/ir_saved.ckpt"  # the render may finish and remove its own before the signal lands
+[ -f "$out/ir_saved.ckpt" ] || { cat "$out/ir_partial.log"; echo "no checkpoint was seen while the render ran"; exit 1; }
 kill -INT $pid || true
 rc=0
 wait $pid || rc=$?

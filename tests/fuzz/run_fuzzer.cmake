@@ -1,11 +1,16 @@
-# cmake -DFUZZER=... -DSEEDS=dir -DREGRESSIONS=dir -DDICT=file -DWORK=dir -DSEED=n -DRUNS=n -P run_fuzzer.cmake
+# cmake -DFUZZER=... -DSEEDS=dir -DREGRESSIONS=dir -DDICT=file -DWORK=dir -DSEED=n -DRUNS=n
+#       [-DUNAVAILABLE=reason -DHINT=text] -P run_fuzzer.cmake
 # What CI runs: the same result on every run of one checkout. Every kept crash
 # input and every seed input must run cleanly, then a short fuzz whose seed
 # and number of runs are fixed explores from the seeds. Open-ended random
 # fuzzing is explore.cmake's (the fuzz-explore target), never a test's.
+# The build makes the fuzzers (the clpath_fuzzers target); a test only runs one.
+if(UNAVAILABLE)
+    message(FATAL_ERROR "clpath-fuzz: the fuzz targets could not be built: ${UNAVAILABLE} (${HINT})")
+endif()
 if(NOT EXISTS ${FUZZER})
-    message("clpath-fuzz: skipped: ${FUZZER} was not built")
-    return()
+    message(FATAL_ERROR "clpath-fuzz: ${FUZZER} was not built: build the default target "
+                        "(cmake --build build) or clpath_fuzzers")
 endif()
 foreach(kind regressions seeds)
     if(kind STREQUAL "regressions")

@@ -201,6 +201,16 @@ kernel void probe_bsdf_eval(global const Material* m, uint count, global const f
     out[i] = (float4)(f, pdf);
 }
 
+/* out[0] = material_is_delta(m). */
+kernel void probe_bsdf_is_delta(global const Material* m, global int* out) {
+#ifdef CLP_SURFACE_PARAMS
+    Material mp = *m;
+    out[0] = material_is_delta(&mp);
+#else
+    out[0] = material_is_delta(m);
+#endif
+}
+
 /* Points sampled on triangle light l as seen from p: out[i] = (q, pdf) with the
  * solid-angle pdf without the pick, or pdf = -1 where the sample gave nothing.
  * pdf_out[i]: the pdf that MIS evaluates for the same direction and distance. */

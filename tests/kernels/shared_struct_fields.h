@@ -25,11 +25,11 @@
     F(CameraData, eye) F(CameraData, width) F(CameraData, forward) F(CameraData, height) F(CameraData, right) \
     F(CameraData, pad0) F(CameraData, up) F(CameraData, pad1) \
     F(FrameParams, camera) F(FrameParams, seed) F(FrameParams, first_sample) F(FrameParams, samples) \
-    F(FrameParams, max_depth) F(FrameParams, rr_rule) F(FrameParams, rr_min_depth) F(FrameParams, pixel_offset) \
+    F(FrameParams, rr_rule) F(FrameParams, rr_min_depth) F(FrameParams, pixel_offset) \
     F(FrameParams, pixel_count) F(FrameParams, light_count) F(FrameParams, env_light) F(FrameParams, ao_distance) \
     F(FrameParams, depth_scale) F(FrameParams, env_color) F(FrameParams, env_width) F(FrameParams, env_scale) \
     F(FrameParams, env_rot_cos) F(FrameParams, env_rot_sin) F(FrameParams, env_height) F(FrameParams, scene_flags) \
-    F(FrameParams, attr_stride) F(FrameParams, pad1) F(FrameParams, pad2) \
+    F(FrameParams, attr_stride) F(FrameParams, pad1) F(FrameParams, pad2) F(FrameParams, pad3) \
     F(Counters, rays) F(Counters, nonfinite) F(Counters, pad0) F(Counters, pad1) \
     F(AccumPixel, sum) F(AccumPixel, comp) \
     F(BatchRay, o) F(BatchRay, tmax) F(BatchRay, d) F(BatchRay, src) \

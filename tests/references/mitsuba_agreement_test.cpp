@@ -36,7 +36,7 @@
 #include <functional>
 #include <ostream>
 
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "support/image_agreement.hpp"
 #include "support/render_runs.hpp"
 #include "support/statistics.hpp"

@@ -5,13 +5,14 @@
 #include <fstream>
 
 #include "render/checkpoint.hpp"
+#include "support/temp_paths.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
 namespace {
 
 std::string temp_path(const std::string& name) {
-    return (std::filesystem::temp_directory_path() / ("clpath_ckpt_" + name)).string();
+    return test::temp_path("ckpt-" + name);
 }
 
 Checkpoint sample_checkpoint() {

@@ -2,6 +2,7 @@
 // plan's end, at the time budget, on stop(), and skips chunks already done.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <thread>
 
 #include "render/chunks.hpp"
@@ -53,16 +54,39 @@ TEST(Chunks, QueueSkipsChunksAlreadyDone) {
     EXPECT_EQ(got, (std::vector<std::uint64_t>{1, 2, 4, 5, 6, 7, 8}));
 }
 
+// On a fake clock: the budget counts from the first chunk handed out, the
+// last chunk is handed out just before the deadline, none at or after it.
 TEST(Chunks, QueueStopsAtTheDeadlineAndOnStop) {
-    ChunkQueue timed({0, 1}, 0.05);  // unbounded plan, 50 ms budget
+    using namespace std::chrono_literals;
+    auto now = std::chrono::steady_clock::time_point{} + 1h;
+    ChunkQueue timed({0, 1}, 0.05, {}, [&] { return now; });  // unbounded plan, 50 ms budget
+    now += 10s;  // before the first chunk: kernel compiles and uploads do not count
+    EXPECT_EQ(timed.seconds_since_start(), 0.0);
+    ASSERT_TRUE(timed.next().has_value());
+    now += 49ms;
+    EXPECT_NEAR(timed.seconds_since_start(), 0.049, 1e-9);
     EXPECT_TRUE(timed.next().has_value());
-    std::this_thread::sleep_for(std::chrono::milliseconds(60));
+    now += 1ms;
+    EXPECT_FALSE(timed.next().has_value());
+    now += 1h;
     EXPECT_FALSE(timed.next().has_value());
 
     ChunkQueue stopped({100, 1}, 0);
     EXPECT_TRUE(stopped.next().has_value());
     stopped.stop();
     EXPECT_FALSE(stopped.next().has_value());
+}
+
+// The real clock is the default: the time since the first chunk passes in real
+// time (only a lower bound is checked: a busy machine makes it longer).
+TEST(Chunks, QueueDefaultClockIsTheSteadyClock) {
+    ChunkQueue timed({0, 1}, 3600);
+    ASSERT_TRUE(timed.next().has_value());
+    const auto after = std::chrono::steady_clock::now();
+    while (std::chrono::steady_clock::now() - after < std::chrono::milliseconds(2)) {
+    }
+    EXPECT_GE(timed.seconds_since_start(), 0.002);
+    EXPECT_TRUE(timed.next().has_value());
 }
 
 }  // namespace

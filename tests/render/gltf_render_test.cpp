@@ -10,7 +10,7 @@
 #include "render/device_scene.hpp"
 #include "render/prepared_scene.hpp"
 #include "scene/scene_builder.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "support/render_helpers.hpp"
 
 using namespace clpath;

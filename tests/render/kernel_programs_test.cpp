@@ -13,7 +13,7 @@
 #include "cl/embedded_sources.hpp"
 #include "render/kernel_programs.hpp"
 #include "render/settings.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "util/error.hpp"
 
 using namespace clpath;

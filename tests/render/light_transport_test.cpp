@@ -15,6 +15,7 @@
 #include "support/render_helpers.hpp"
 #include "support/render_runs.hpp"
 #include "support/statistics.hpp"
+#include "support/temp_paths.hpp"
 
 using namespace clpath;
 
@@ -243,7 +244,7 @@ std::string write_sky(const std::string& name) {
                 if (x == 20 && y == 4) v = 400.0f;  // the sun: most of the power in one texel
                 img.rgb[(y * 32 + x) * 3 + c] = v;
             }
-    const std::string path = (std::filesystem::temp_directory_path() / name).string();
+    const std::string path = test::temp_path(name);
     write_pfm(path, img);
     return path;
 }
@@ -257,7 +258,7 @@ TEST(LightTransport, EnvironmentImportanceSamplingAgreesWithUniform) {
     const auto ball = s.add_material("ball", conductor(glm::vec3(0.9f), 0.5f));
     s.add_triangles(transformed(make_plane(), shape_transform({0, 0, 0}, {0, 0, 0}, {10, 1, 10})), ground);
     s.add_triangles(transformed(make_icosphere(2), shape_transform({0, 0.5f, 0}, {0, 0, 0}, glm::vec3(0.5f))), ball);
-    s.environment.image = write_sky("clpath-test-sky.pfm");
+    s.environment.image = write_sky("test-sky.pfm");
     s.environment.rotation_degrees = 30;
     s.camera.eye = {0, 1.2f, -3};
     s.camera.target = {0, 0.4f, 0};

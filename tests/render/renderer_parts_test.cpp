@@ -7,6 +7,10 @@
 #include <cstring>
 #include <string>
 
+#include "cl/embedded_sources.hpp"
+#include "cl/program.hpp"
+#include "render/device_scene.hpp"
+#include "render/kernel_features.hpp"
 #include "render/renderer.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "support/render_helpers.hpp"
@@ -152,4 +156,26 @@ TEST(RendererParts, OnePreparedSceneOnTwoContexts) {
     RenderSettings flat = st;
     flat.accel = Accel::Flat;
     EXPECT_THROW(Renderer(other, *prepared, flat), Error);
+}
+
+// The scene buffers are bound by position from one table; the kernel's
+// parameters come from the same table. Checked on the kernel as compiled,
+// through the argument names OpenCL reports.
+TEST(DeviceScene, KernelParametersFollowTheSceneBufferTable) {
+    RenderSettings st;
+    st.all_features = true;
+    const KernelFeatures f = kernel_features(SceneFeatures{}, st);
+    const BuildResult built = build_program(test::device(), program_source(renderer_kernel_files()),
+                                            build_options(f) + " -cl-kernel-arg-info");
+    const Kernel k = test::device().kernel(built.program.get(), "render_paths");
+    cl_uint args = 0;
+    ASSERT_EQ(clGetKernelInfo(k.get(), CL_KERNEL_NUM_ARGS, sizeof args, &args, nullptr), CL_SUCCESS);
+    std::vector<std::string> names = scene_buffer_names();
+    names.insert(names.end(), {"fp", "accum", "counters"});
+    ASSERT_EQ(args, names.size());
+    for (cl_uint i = 0; i < args; ++i) {
+        char name[64] = {};
+        ASSERT_EQ(clGetKernelArgInfo(k.get(), i, CL_KERNEL_ARG_NAME, sizeof name, name, nullptr), CL_SUCCESS);
+        EXPECT_EQ(std::string(name), names[i]) << "argument " << i;
+    }
 }

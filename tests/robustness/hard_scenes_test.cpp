@@ -23,7 +23,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "support/image_agreement.hpp"
 #include "support/render_runs.hpp"
 

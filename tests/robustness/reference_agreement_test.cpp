@@ -32,7 +32,7 @@
 
 #include "render/kernel_features.hpp"
 #include "scene/builtin_scenes.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "support/analytic_scenes.hpp"
 #include "support/image_agreement.hpp"
 #include "support/render_runs.hpp"

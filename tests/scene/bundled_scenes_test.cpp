@@ -9,7 +9,7 @@
 
 #include "scene/builtin_scenes.hpp"
 #include "scene/memory_files.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_loader.hpp"
 
 namespace clpath {
 namespace {

@@ -7,9 +7,9 @@
 
 #include "gltf_files.hpp"
 #include "memory_files.hpp"
-#include "scene/gltf_scene.hpp"
-#include "scene/scene_file.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/gltf_scene.hpp"
+#include "scene/load/scene_file.hpp"
+#include "scene/load/scene_loader.hpp"
 
 using namespace clpath;
 using namespace clpath::test;

@@ -9,7 +9,7 @@
 
 #include "gltf_files.hpp"
 #include "memory_files.hpp"
-#include "scene/gltf_scene.hpp"
+#include "scene/load/gltf_scene.hpp"
 
 using namespace clpath;
 using namespace clpath::test;

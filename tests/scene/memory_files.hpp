@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "scene/load_options.hpp"
+#include "scene/load/load_options.hpp"
 #include "util/error.hpp"
 
 namespace clpath::test {

@@ -12,8 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene/mitsuba_export.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/export/mitsuba_export.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "scene/memory_files.hpp"
 #include "util/error.hpp"
 

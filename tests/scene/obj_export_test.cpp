@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "scene/memory_files.hpp"
-#include "scene/obj_export.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/export/obj_export.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "scene/shapes.hpp"
 #include "support/image_agreement.hpp"
 #include "support/render_helpers.hpp"

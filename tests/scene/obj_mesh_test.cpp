@@ -1,16 +1,17 @@
 // OBJ meshes and MTL materials: what is read, how MTL maps to clpath
 // materials, and that every broken file is refused with FILE:LINE.
-#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 
 #include <gtest/gtest.h>
 
-#include "scene/load_options.hpp"
+#include "scene/load/load_options.hpp"
 #include "scene/memory_files.hpp"
-#include "scene/obj_mesh.hpp"
+#include "scene/load/obj_mesh.hpp"
+#include "support/temp_paths.hpp"
 
 namespace clpath {
 namespace {
@@ -231,9 +232,11 @@ TEST(ObjMeshBad, TheFileIsNamedWhenItCannotBeRead) {
 }
 
 // A million triangles must load in seconds (the bar a user loading a scanned mesh expects); a generated grid
-// of 1,000,000 triangles is written to a temporary file and timed.
+// of 1,000,000 triangles is written to a temporary file and timed. The loader runs on one thread, so on an
+// idle machine its CPU time is its wall time; CPU time is what is timed, so that other processes sharing
+// the machine (a parallel test run, a build) cannot fail the test.
 TEST(ObjMesh, MillionTrianglesLoadInSeconds) {
-    const std::string path = testing::TempDir() + "/clpath-million.obj";
+    const std::string path = test::temp_path("million.obj");
     {
         std::ofstream out(path);
         const int n = 708;  // 707 x 707 cells, 2 triangles each: 999,698 triangles
@@ -249,12 +252,12 @@ TEST(ObjMesh, MillionTrianglesLoadInSeconds) {
                 out << "f " << a << ' ' << b << ' ' << d << "\nf " << a << ' ' << d << ' ' << c << '\n';
             }
     }
-    const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t t0 = std::clock();  // this process's CPU time
     const ObjMesh m = load_obj(path, read_text_file);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double seconds = double(std::clock() - t0) / CLOCKS_PER_SEC;
     std::filesystem::remove(path);
     EXPECT_EQ(m.triangle_count(), 707u * 707u * 2u);
-    std::printf("loaded %zu triangles in %.2f s\n", m.triangle_count(), seconds);
+    std::printf("loaded %zu triangles in %.2f s of CPU time\n", m.triangle_count(), seconds);
     EXPECT_LT(seconds, 10.0);
 }
 

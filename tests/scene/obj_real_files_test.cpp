@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "scene/memory_files.hpp"
-#include "scene/obj_mesh.hpp"
-#include "scene/scene_file.hpp"
+#include "scene/load/obj_mesh.hpp"
+#include "scene/load/scene_file.hpp"
 
 namespace clpath {
 namespace {

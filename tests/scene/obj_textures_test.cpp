@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "memory_files.hpp"
-#include "scene/scene_file.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_file.hpp"
+#include "scene/load/scene_loader.hpp"
 
 using namespace clpath;
 using namespace clpath::test;

@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 
 #include "scene/memory_files.hpp"
-#include "scene/obj_mesh.hpp"
-#include "scene/polygon_triangulation.hpp"
-#include "scene/scene_file.hpp"
+#include "scene/load/obj_mesh.hpp"
+#include "scene/load/polygon_triangulation.hpp"
+#include "scene/load/scene_file.hpp"
 
 namespace clpath {
 namespace {

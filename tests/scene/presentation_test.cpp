@@ -10,10 +10,10 @@
 
 #include "render/settings.hpp"
 #include "scene/gltf_files.hpp"
-#include "scene/gltf_scene.hpp"
+#include "scene/load/gltf_scene.hpp"
 #include "scene/memory_files.hpp"
-#include "scene/presentation.hpp"
-#include "scene/scene_file.hpp"
+#include "scene/load/presentation.hpp"
+#include "scene/load/scene_file.hpp"
 #include "support/render_helpers.hpp"
 
 namespace clpath {

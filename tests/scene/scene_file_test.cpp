@@ -1,15 +1,17 @@
 // The JSON scene format: what a valid file gives, and that every kind of bad
 // input is refused with a message naming the file and the line or field.
 #include <cmath>
+#include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "scene/load_options.hpp"
-#include "scene/scene_file.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/load_options.hpp"
+#include "scene/load/scene_file.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "scene/memory_files.hpp"
+#include "support/temp_paths.hpp"
 
 namespace clpath {
 namespace {
@@ -294,8 +296,9 @@ TEST(SceneFileBad, OutOfRangeValues) {
               "scenes/s.json: materials.x.emission: -1 is out of range (must be >= 0)");
     EXPECT_EQ(material(R"({"type": "emitter"})"), "scenes/s.json: materials.x.emission: required for an emitter");
     EXPECT_EQ(material(R"({"type": "plastic"})"),
-              "scenes/s.json: materials.x.type: unknown material type 'plastic' (choose one of: diffuse, emitter, "
-              "mirror, conductor, glossy, dielectric, glass)");
+              "scenes/s.json: materials.x.type: unknown material type 'plastic' (choose one of: diffuse, mirror, "
+              "conductor, dielectric, or the aliases emitter (diffuse of albedo 0 that emits), glossy (conductor), "
+              "glass (dielectric))");
     EXPECT_EQ(material(R"({"type": "diffuse", "albedo": 0.5, "color": 0.5})"),
               "scenes/s.json: materials.x.color: give only one of 'albedo' and 'color' (they mean the same)");
 
@@ -381,9 +384,10 @@ TEST(LoadScene, DispatchesOnWhatItIsGiven) {
 }
 
 TEST(LoadScene, FolderInsteadOfFile) {
-    const std::string dir = testing::TempDir() + "/clpath-scene-folder.json";
+    const std::string dir = test::temp_path("scene-folder.json");
     std::filesystem::create_directories(dir);
     EXPECT_EQ(error_of([&] { load_scene(dir); }), dir + ": is a folder, not a file");
+    std::filesystem::remove(dir);
 }
 
 TEST(LoadScene, BareObjIsFramedAndLit) {

@@ -6,8 +6,8 @@
 
 #include "render/settings.hpp"
 #include "scene/memory_files.hpp"
-#include "scene/scene_file.hpp"
-#include "scene/scene_loader.hpp"
+#include "scene/load/scene_file.hpp"
+#include "scene/load/scene_loader.hpp"
 #include "support/render_helpers.hpp"
 
 namespace clpath {

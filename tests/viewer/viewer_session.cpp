@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <unistd.h>
+
 #include "image/image.hpp"
 #include "viewer/block_agreement.hpp"
 #include "viewer/process.hpp"
@@ -23,6 +25,15 @@ namespace {
 
 // Small images: these run on two CPU cores.
 constexpr int kWidth = 64, kHeight = 48;
+
+// xvfb-run -a takes the first display number from -n (given before -a) whose
+// lock file is missing, then starts Xvfb there; two runs that look at once can
+// pick the same one, and the second Xvfb fails. CTest runs these tests one at
+// a time (RESOURCE_LOCK); a search starting from a number of this process's
+// own keeps apart the test runs of other build folders on the same machine.
+std::string xvfb_run() {
+    return std::string(XVFB_RUN) + " -n " + std::to_string(100 + ::getpid() % 800) + " -a";
+}
 
 // A fresh folder per test, named after it.
 std::string test_dir() {
@@ -49,7 +60,7 @@ struct Session {
 Session view(const std::string& dir, const std::string& script, const std::string& extra = "", int width = kWidth,
              int height = kHeight) {
     write_text(dir + "/script.txt", script);
-    const std::string cmd = std::string(XVFB_RUN) + " -a -s '-screen 0 640x480x24' " + CLPATH_EXE +
+    const std::string cmd = xvfb_run() + " -s '-screen 0 640x480x24' " + CLPATH_EXE +
                             " view --width " + std::to_string(width) + " --height " + std::to_string(height) +
                             " --frames 3000 --script " + dir + "/script.txt --state-log " + dir +
                             "/state.jsonl --screenshot-dir " + dir + " " + extra;
@@ -258,11 +269,13 @@ TEST(Session, CtrlCExitsCleanly) {
     const std::string dir = test_dir();
     const std::string log = dir + "/state.jsonl";
     // The viewer runs in the background under Xvfb; once it has drawn a frame, SIGINT.
+    // The first frame waits for the kernels' compile (a cold cache on a busy
+    // machine: a minute or more), so the wait is bounded by minutes, not seconds.
     const std::string inner = std::string(CLPATH_EXE) + " view --width 64 --height 48 --state-log " + log +
                               " --screenshot-dir " + dir + " & pid=$!; i=0; while [ ! -s " + log +
-                              " ] && [ $i -lt 600 ]; do sleep 0.1; i=$((i+1)); done; sleep 0.5; kill -INT $pid; "
+                              " ] && [ $i -lt 3000 ]; do sleep 0.1; i=$((i+1)); done; sleep 0.5; kill -INT $pid; "
                               "wait $pid; echo exit=$?";
-    const ProcessResult r = run_shell(std::string(XVFB_RUN) + " -a sh -c '" + inner + "'");
+    const ProcessResult r = run_shell(xvfb_run() + " sh -c '" + inner + "'");
     EXPECT_NE(r.output.find("exit=0"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("(interrupted)"), std::string::npos) << r.output;
 }

@@ -26,8 +26,8 @@ if(CLPATH_WITH_VIEWER AND CLPATH_VIEWER_SOURCES)
         target_compile_definitions(viewer_session PRIVATE "CLPATH_EXE=\"$<TARGET_FILE:clpath>\""
                                    "XVFB_RUN=\"${XVFB_RUN}\"" "VIEWER_TEST_OUT=\"${CMAKE_BINARY_DIR}/viewer-test-out\"")
         add_dependencies(viewer_session clpath)
-        gtest_discover_tests(viewer_session TEST_PREFIX viewer. DISCOVERY_TIMEOUT 60
-                             PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 600 RESOURCE_LOCK xvfb)
+        clpath_discover_tests(viewer_session viewer TEST_PREFIX viewer. DISCOVERY_TIMEOUT 60
+                              PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 600 RESOURCE_LOCK xvfb)
     else()
         message(WARNING "xvfb-run not found: the viewer's session tests are left out (Debian: apt install xvfb)")
     endif()

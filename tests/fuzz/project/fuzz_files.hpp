@@ -4,7 +4,7 @@
 #include <map>
 #include <string>
 
-#include "scene/load_options.hpp"
+#include "scene/load/load_options.hpp"
 #include "scene/scene.hpp"
 #include "util/error.hpp"
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "fuzz_files.hpp"
-#include "scene/gltf_scene.hpp"
+#include "scene/load/gltf_scene.hpp"
 
 namespace {
 clpath::TextureImage decode(const std::string& bytes, const std::string& name) {

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "fuzz_files.hpp"
-#include "scene/scene_file.hpp"
+#include "scene/load/scene_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);

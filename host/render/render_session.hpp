@@ -1,0 +1,61 @@
+#pragma once
+// One render of a scene to a sample count or a time budget, the way a program
+// embedding clpath runs it: chunks of samples over every chosen device and,
+// with a ProcessGroup, over every process of a job; checkpoints written as it
+// goes, and resuming from one. The caller shows progress and decides when to
+// stop (hooks); the image is the same bits however the work was split.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bvh/bvh.hpp"
+#include "cl/device.hpp"
+#include "render/device_farm.hpp"
+#include "render/exact_film.hpp"
+#include "render/settings.hpp"
+#include "scene/scene.hpp"
+
+namespace clpath {
+
+class ProcessGroup;
+
+struct SessionOptions {
+    std::uint64_t spp = 0;            // 0: until the time budget is spent
+    double time_limit = 0;            // seconds; 0: none
+    std::uint32_t chunk_samples = 0;  // 0: default_chunk_samples(spp)
+    double checkpoint_seconds = 0;    // 0: no checkpoints
+    std::string checkpoint_path;      // where checkpoints go
+    std::string resume_path;          // a checkpoint to continue from; empty: none
+};
+
+// All optional; called on the calling thread, but on_chunk.
+struct SessionHooks {
+    // Once, when the scene is prepared and before the devices start.
+    std::function<void(const BvhStats&)> on_start;
+    // About every 10 ms while rendering, with the film's samples per pixel.
+    std::function<void(std::uint64_t spp)> on_progress;
+    // Asked as often: true ends the render, keeping the chunks finished so
+    // far (and, with checkpoints on, saving them in a last checkpoint).
+    std::function<bool()> stop_requested;
+    // On a device's own thread, after each chunk it adds, with the film's
+    // samples per pixel.
+    std::function<void(std::uint64_t spp)> on_chunk;
+};
+
+struct SessionResult {
+    ExactFilm film;                   // on the lead (or alone): the whole image's sums
+    std::vector<DeviceShare> shares;  // per device (on the lead, of every process)
+    BvhStats bvh;
+    bool stopped = false;             // stop_requested() ended it early
+    double wall_seconds = 0;          // from the first chunk: compiles and uploads are not in it
+    std::uint64_t rays = 0, nonfinite = 0;
+    std::uint64_t bytes_to_device = 0, bytes_from_device = 0;  // every device's, scene uploads included
+    bool leads = true;                // false on processes of a group other than the lead
+};
+
+SessionResult render_session(const Scene& scene, const RenderSettings& settings,
+                             const std::vector<DeviceInfo>& devices, const SessionOptions& options,
+                             const SessionHooks& hooks = {}, ProcessGroup* group = nullptr);
+
+}  // namespace clpath

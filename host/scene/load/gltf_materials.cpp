@@ -1,0 +1,150 @@
+// glTF materials and their textures, onto CLP_MAT_GLTF (docs/scene-format.md
+// lists what is read and what is ignored).
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include "scene/load/gltf_parts.hpp"
+#include "util/error.hpp"
+
+namespace clpath::gltf {
+namespace {
+
+std::uint32_t wrap_mode(int gl) {
+    switch (gl) {
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return CLP_WRAP_CLAMP;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return CLP_WRAP_MIRROR;
+    default: return CLP_WRAP_REPEAT;
+    }
+}
+
+// A file name whose extension tells OpenImageIO the format.
+std::string format_hint(const tinygltf::Image& img, std::size_t index) {
+    if (img.mimeType == "image/png") return "image.png";
+    if (img.mimeType == "image/jpeg") return "image.jpg";
+    if (!img.uri.empty() && img.uri.rfind("data:", 0) != 0) return std::filesystem::path(img.uri).filename().string();
+    if (img.uri.rfind("data:image/png", 0) == 0) return "image.png";
+    if (img.uri.rfind("data:image/jpeg", 0) == 0) return "image.jpg";
+    return "images[" + std::to_string(index) + "]";
+}
+
+float factor(const Source& src, double v, const std::string& path, float lo, float hi) {
+    if (!(v >= lo && v <= hi)) src.fail(path, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(v));
+    return float(v);
+}
+
+float extension_number(const tinygltf::ExtensionMap& ext, const char* name, const char* key, float fallback) {
+    auto it = ext.find(name);
+    if (it == ext.end() || !it->second.IsObject() || !it->second.Has(key) || !it->second.Get(key).IsNumber()) return fallback;
+    return float(it->second.Get(key).GetNumberAsDouble());
+}
+
+class Reader {
+public:
+    Reader(const Source& src, GltfModel& out) : src_(src), out_(out) {}
+
+    int texture(int index, int texcoord, const std::string& path) {
+        if (index < 0) return CLP_NO_TEXTURE;
+        const auto& m = src_.model;
+        if (std::size_t(index) >= m.textures.size())
+            src_.fail(path + ".index", "texture " + std::to_string(index) + " does not exist (the file has " +
+                                           std::to_string(m.textures.size()) + ")");
+        if (texcoord != 0)
+            out_.warnings.push_back(src_.file + ": " + path + ": uses TEXCOORD_" + std::to_string(texcoord) +
+                                    "; clpath reads TEXCOORD_0 for every texture");
+        const tinygltf::Texture& t = m.textures[std::size_t(index)];
+        const std::string tp = "textures[" + std::to_string(index) + "]";
+        if (t.source < 0 || std::size_t(t.source) >= m.images.size())
+            src_.fail(tp + ".source", "image " + std::to_string(t.source) + " does not exist (the file has " +
+                                          std::to_string(m.images.size()) + ")");
+        if (t.sampler >= 0 && std::size_t(t.sampler) >= m.samplers.size())
+            src_.fail(tp + ".sampler", "sampler " + std::to_string(t.sampler) + " does not exist");
+        const auto key = std::make_pair(t.source, t.sampler);
+        if (auto it = cache_.find(key); it != cache_.end()) return it->second;
+
+        const tinygltf::Image& img = m.images[std::size_t(t.source)];
+        const std::string ip = "images[" + std::to_string(t.source) + "]";
+        if (img.image.empty())
+            src_.fail(ip, "no image data (" + (img.uri.empty() ? "bufferView " + std::to_string(img.bufferView)
+                                                               : "'" + img.uri.substr(0, 80) + "'") + ")");
+        Texture tex;
+        try {
+            TextureImage ti = src_.options.decode_texture(
+                std::string(reinterpret_cast<const char*>(img.image.data()), img.image.size()),
+                format_hint(img, std::size_t(t.source)));
+            if (ti.width <= 0 || ti.height <= 0 ||
+                (ti.is_float ? ti.rgba32.size() : ti.rgba8.size()) != std::size_t(ti.width) * std::size_t(ti.height) * 4)
+                throw Error("the decoder returned no texels");
+            tex.width = ti.width;
+            tex.height = ti.height;
+            tex.is_float = ti.is_float;
+            tex.rgba8 = std::move(ti.rgba8);
+            tex.rgba32 = std::move(ti.rgba32);
+        } catch (const Error& e) {
+            src_.fail(ip + " (used by " + path + ")", e.what());
+        }
+        tex.name = src_.file + ": " + ip;
+        if (t.sampler >= 0) {
+            const tinygltf::Sampler& s = m.samplers[std::size_t(t.sampler)];
+            tex.wrap_s = wrap_mode(s.wrapS);
+            tex.wrap_t = wrap_mode(s.wrapT);
+            tex.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+        }
+        out_.textures.push_back(std::move(tex));
+        return cache_[key] = int(out_.textures.size() - 1);
+    }
+
+    GltfMaterial material(std::size_t i) {
+        const tinygltf::Material& gm = src_.model.materials[i];
+        const std::string p = "materials[" + std::to_string(i) + "]";
+        const auto& pbr = gm.pbrMetallicRoughness;
+        const std::string pp = p + ".pbrMetallicRoughness";
+        glm::vec4 base(1);
+        if (pbr.baseColorFactor.size() == 4)
+            for (int c = 0; c < 4; ++c)
+                base[c] = factor(src_, pbr.baseColorFactor[std::size_t(c)], pp + ".baseColorFactor[" + std::to_string(c) + "]", 0, 1);
+        SceneMaterial m = gltf_material(glm::vec3(base), factor(src_, pbr.metallicFactor, pp + ".metallicFactor", 0, 1),
+                                   factor(src_, pbr.roughnessFactor, pp + ".roughnessFactor", 0, 1));
+        m.alpha = base.w;
+        glm::vec3 e(0);
+        if (gm.emissiveFactor.size() == 3)
+            for (int c = 0; c < 3; ++c)
+                e[c] = factor(src_, gm.emissiveFactor[std::size_t(c)], p + ".emissiveFactor[" + std::to_string(c) + "]", 0, 1);
+        const float strength = extension_number(gm.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1);
+        if (!(strength >= 0) || !std::isfinite(strength))
+            src_.fail(p + ".extensions.KHR_materials_emissive_strength.emissiveStrength", "must be finite and non-negative");
+        store3(m.emission, e * strength);
+        m.ior = extension_number(gm.extensions, "KHR_materials_ior", "ior", 1.5f);
+        if (!(m.ior >= 1 && m.ior <= 10)) src_.fail(p + ".extensions.KHR_materials_ior.ior", "must be in [1, 10]");
+        // glTF emission is from the front face unless the material is double-sided.
+        if (gm.doubleSided) m.flags |= CLP_MATF_TWO_SIDED_EMISSION;
+        if (gm.alphaMode == "OPAQUE" || gm.alphaMode.empty()) m.alpha_mode = CLP_ALPHA_OPAQUE;
+        else if (gm.alphaMode == "MASK") m.alpha_mode = CLP_ALPHA_MASK;
+        else if (gm.alphaMode == "BLEND") m.alpha_mode = CLP_ALPHA_BLEND;
+        else src_.fail(p + ".alphaMode", "unknown alpha mode '" + gm.alphaMode + "' (OPAQUE, MASK or BLEND)");
+        m.alpha_cutoff = factor(src_, gm.alphaCutoff, p + ".alphaCutoff", 0, 1e30f);
+        m.texture[CLP_TEX_BASE] = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, pp + ".baseColorTexture");
+        m.texture[CLP_TEX_MR] = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                                        pp + ".metallicRoughnessTexture");
+        m.texture[CLP_TEX_NORMAL] = texture(gm.normalTexture.index, gm.normalTexture.texCoord, p + ".normalTexture");
+        m.texture[CLP_TEX_EMISSION] = texture(gm.emissiveTexture.index, gm.emissiveTexture.texCoord, p + ".emissiveTexture");
+        m.normal_scale = float(gm.normalTexture.scale);
+        if (!std::isfinite(m.normal_scale)) src_.fail(p + ".normalTexture.scale", "must be finite");
+        return {gm.name.empty() ? p : gm.name, m};
+    }
+
+private:
+    const Source& src_;
+    GltfModel& out_;
+    std::map<std::pair<int, int>, int> cache_;
+};
+
+}  // namespace
+
+void read_materials(const Source& src, GltfModel& model) {
+    Reader r(src, model);
+    for (std::size_t i = 0; i < src.model.materials.size(); ++i) model.materials.push_back(r.material(i));
+}
+
+}  // namespace clpath::gltf
