@@ -5,7 +5,7 @@
  * Every function is static: a plain (C99) inline function has no body where
  * a compiler chooses not to inline it, and clang for NVIDIA and AMD GPUs then
  * leaves an unresolved symbol (benchmarks/results/gpu-compile/). Where a
- * function is inlined is decided per shape (CLP_TARGET_GPU: programs built
+ * function is inlined is decided per device kind (CLP_TARGET_GPU: programs built
  * for GPU devices, render/kernel_programs.hpp):
  *   CLP_WALK            a traversal walk. On a GPU forced inline: a call passes
  *                       the ray through the GPU's stack (the flat walk, called

@@ -341,6 +341,13 @@ typedef struct {
     int tri;
 } Hit;
 
+/* The wavefront integrator's queue lengths (kernels/wavefront.cl): the paths
+ * queued for this bounce, those queued for the next, the shadow rays. */
+#define CLP_WF_QUEUED 0u
+#define CLP_WF_NEXT 1u
+#define CLP_WF_SHADOWS 2u
+#define CLP_WF_COUNT_SLOTS 4u
+
 /* The scene's device buffers, in the order every kernel that reads the scene
  * takes them: the one list behind the kernels' parameters (CLP_SCENE_PARAMS)
  * and the host's uploads and bindings (host/render/device_scene.hpp).

@@ -264,7 +264,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     Buffer variant_out;
     if (!o.ab.empty()) variant_out = ctx.buffer(n * sizeof(Hit), CL_MEM_READ_WRITE, "the variant's answers");
 
-    const ProgramSpec spec = ray_batch_program(o.accel, kernel_shape(ctx.device()));
+    const ProgramSpec spec = ray_batch_program(o.accel, kernel_code(ctx.device()));
     const std::string source = program_source(spec.roots), options = spec.options;
     BuildResult built = build_program(ctx, source, options);
     say(std::string("kernels ") + (built.from_cache ? "loaded from cache" : "compiled") + " in " +

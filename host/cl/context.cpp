@@ -159,4 +159,16 @@ double event_seconds(cl_event e) {
     return double(end - start) * 1e-9;
 }
 
+double event_span_seconds(cl_event first, cl_event last) {
+    cl_ulong start = 0, end = 0;
+    cl_check(clWaitForEvents(1, &last), "clWaitForEvents");
+    cl_check(clGetEventProfilingInfo(first, CL_PROFILING_COMMAND_START, sizeof start, &start, nullptr),
+             "clGetEventProfilingInfo");
+    cl_check(clGetEventProfilingInfo(last, CL_PROFILING_COMMAND_END, sizeof end, &end, nullptr),
+             "clGetEventProfilingInfo");
+    clReleaseEvent(first);
+    clReleaseEvent(last);
+    return end > start ? double(end - start) * 1e-9 : 0.0;
+}
+
 }  // namespace clpath

@@ -155,5 +155,8 @@ private:
 
 // Seconds a finished, profiled event spent executing; releases the event.
 double event_seconds(cl_event e);
+// Seconds from the start of `first` to the end of `last` (profiled events of
+// one in-order queue); waits for last and releases both.
+double event_span_seconds(cl_event first, cl_event last);
 
 }  // namespace clpath

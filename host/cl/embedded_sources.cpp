@@ -95,4 +95,9 @@ const std::vector<std::string>& renderer_kernel_files() {
     return files;
 }
 
+const std::vector<std::string>& wavefront_kernel_files() {
+    static const std::vector<std::string> files = {"wavefront.cl"};
+    return files;
+}
+
 }  // namespace clpath

@@ -47,7 +47,8 @@ struct KernelVariant {
 std::string variant_source(const std::vector<std::string>& roots, const KernelVariant& variant);
 std::string variant_options(const std::string& options, const KernelVariant& variant);
 
-// The renderer's root kernel files.
+// The renderer's root kernel files: the megakernel's, the wavefront's.
 const std::vector<std::string>& renderer_kernel_files();
+const std::vector<std::string>& wavefront_kernel_files();
 
 }  // namespace clpath

@@ -32,13 +32,13 @@ constexpr int kSkipped = 77;
 
 struct KernelsOptions {
     std::vector<std::string> scenes, targets;
-    std::string dump, csv, md, work, cache, shape = "gpu", kernels_dir, extra_options;
+    std::string dump, csv, md, work, cache, code = "gpu", kernels_dir, extra_options;
     bool list = false, report = false, check = false, covering = false;
     int jobs = 0;
 };
 
 std::vector<ProgramSpec> programs_for(const KernelsOptions& o) {
-    const KernelShape shape = parse_kernel_shape(o.shape);
+    const KernelCode code = parse_kernel_code(o.code);
     std::vector<NamedSceneFeatures> scenes;
     std::set<std::string> names;
     for (const auto& spec : o.scenes) {
@@ -49,11 +49,11 @@ std::vector<ProgramSpec> programs_for(const KernelsOptions& o) {
         for (std::string base = name; !names.insert(name).second;) name = base + "-" + std::to_string(names.size());
         scenes.push_back({name, scene_features(scene), settings_from_scene(scene.render)});
     }
-    if (scenes.empty() || o.covering) return covering_programs(scenes, shape);
+    if (scenes.empty() || o.covering) return covering_programs(scenes, code);
     std::vector<ProgramSpec> out;
     std::set<std::string> seen;
     for (const auto& s : scenes)
-        for (auto& p : scene_programs(s, shape))
+        for (auto& p : scene_programs(s, code))
             if (seen.insert(p.options + "|" + p.roots.front()).second) out.push_back(std::move(p));
     return out;
 }
@@ -176,7 +176,7 @@ Command add_kernels_command(CLI::App& app) {
                                          "registers, stack/private bytes and spills");
     cmd->add_flag("--check", o->check, "With --report: exit 1 on any failed compile, unresolved symbol or kernel "
                                        "over its budget, 77 when a target's tools are missing");
-    cmd->add_option("--shape", o->shape, "The kernels' shape: gpu (as built for GPU devices) or cpu")
+    cmd->add_option("--code", o->code, "Which code of the kernels: gpu (as built for GPU devices, -DCLP_TARGET_GPU) or cpu")
         ->check(CLI::IsMember({"gpu", "cpu"}));
     cmd->add_option("--targets", o->targets, "sm_90, gfx90a, gfx1100 (default: all)")->delimiter(',');
     cmd->add_option("--jobs", o->jobs, "Compiles at once (default: one per core)")->check(whole_number(1, 1024));

@@ -31,6 +31,16 @@
 namespace clpath {
 namespace {
 
+// The kernel shapes the devices ran, "mega", or "mega,wavefront" where they differ.
+std::string kernel_shapes_used(const std::vector<DeviceShare>& shares) {
+    std::string used;
+    for (const DeviceShare& s : shares) {
+        const std::string name = kernel_shape_name(s.kernel_shape);
+        if (("," + used + ",").find("," + name + ",") == std::string::npos) used += (used.empty() ? "" : ",") + name;
+    }
+    return used;
+}
+
 // The longest gap between progress lines in a log, in milliseconds. Meant for
 // tests that cannot wait 10 s; documented in README.
 double progress_interval_from_env() {
@@ -56,6 +66,7 @@ struct RenderOptions {
     int leaf_size = 4, bins = 16;
     bool quiet = false;
     std::string accel = "bvh";
+    std::string kernel = "auto";
     std::uint32_t chunk_samples = 0;
     double checkpoint_seconds = 0;
     std::string checkpoint_file, resume;
@@ -114,6 +125,7 @@ int run_render(const RenderOptions& o) {
     settings.bvh.max_leaf_size = o.leaf_size;
     settings.bvh.bins = o.bins;
     settings.accel = parse_accel(o.accel);
+    settings.kernel_shape = parse_kernel_shape(o.kernel);
     if (o.width) scene.camera.width = o.width;
     if (o.height) scene.camera.height = o.height;
     std::vector<std::string> outputs = o.outputs;
@@ -199,12 +211,12 @@ int run_render(const RenderOptions& o) {
     for (const auto& d : devices) device_names += (device_names.empty() ? "" : ", ") + d.name;
     std::printf(
         "summary: device=\"%s\" devices=%zu integrator=%s triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f "
-        "spp=%llu render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s "
+        "spp=%llu render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s kernel=%s "
         "bytes_to_device=%llu bytes_from_device=%llu%s\n",
         device_names.c_str(), result.shares.size(), integrator_name(settings.integrator), scene.triangle_count(),
         result.bvh.build_ms, result.bvh.node_count, result.bvh.sah_cost, (unsigned long long)done_spp, wall,
         samples / wall * 1e-6, double(result.rays) / wall * 1e-6, (unsigned long long)result.rays,
-        (unsigned long long)result.nonfinite, accel_name(settings.accel),
+        (unsigned long long)result.nonfinite, accel_name(settings.accel), kernel_shapes_used(result.shares).c_str(),
         (unsigned long long)result.bytes_to_device, (unsigned long long)result.bytes_from_device,
         result.stopped ? " interrupted=1" : "");
     if (result.shares.size() > 1 || mpi)
@@ -289,6 +301,11 @@ Command add_render_command(CLI::App& app) {
     cmd->add_option("--accel", o->accel, "Acceleration structure: bvh, or flat (one box per object, the thesis "
                     "renderer's; a baseline)")
         ->check(CLI::IsMember(accel_names()))
+        ->capture_default_str();
+    cmd->add_option("--kernel", o->kernel,
+                    "Kernel shape: auto (the wavefront on GPUs, the megakernel on CPUs), mega (one kernel per path) "
+                    "or wavefront (small kernels over queues of paths; path and path-bsdf only)")
+        ->check(CLI::IsMember(kernel_shape_names()))
         ->capture_default_str();
     cmd->add_flag("--quiet,-q", o->quiet, "Print only the summary line");
     return [o] { return run_render(*o); };

@@ -163,6 +163,7 @@ std::vector<DeviceShare> MpiJob::gather_shares(const std::vector<DeviceShare>& l
         char device[96];
         std::uint64_t chunks, spp, rays, nonfinite, to_device, from_device;
         double busy;
+        std::uint32_t kernel_shape;
     };
     std::string mine;
     for (const auto& s : local) {
@@ -176,6 +177,7 @@ std::vector<DeviceShare> MpiJob::gather_shares(const std::vector<DeviceShare>& l
         w.busy = s.busy_seconds;
         w.to_device = s.bytes_to_device;
         w.from_device = s.bytes_from_device;
+        w.kernel_shape = std::uint32_t(s.kernel_shape);
         mine.append(reinterpret_cast<const char*>(&w), sizeof w);
     }
     std::vector<DeviceShare> out;
@@ -183,7 +185,17 @@ std::vector<DeviceShare> MpiJob::gather_shares(const std::vector<DeviceShare>& l
         for (std::size_t at = 0; at + sizeof(Wire) <= bytes.size(); at += sizeof(Wire)) {
             Wire w;
             std::memcpy(&w, bytes.data() + at, sizeof w);
-            out.push_back({w.device, w.chunks, w.spp, w.rays, w.nonfinite, w.busy, w.to_device, w.from_device});
+            DeviceShare s;
+            s.device = w.device;
+            s.kernel_shape = KernelShape(w.kernel_shape);
+            s.chunks = w.chunks;
+            s.samples_per_pixel = w.spp;
+            s.rays = w.rays;
+            s.nonfinite = w.nonfinite;
+            s.busy_seconds = w.busy;
+            s.bytes_to_device = w.to_device;
+            s.bytes_from_device = w.from_device;
+            out.push_back(s);
         }
     return out;
 }

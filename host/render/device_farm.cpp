@@ -21,7 +21,10 @@ DeviceFarm::DeviceFarm(std::vector<DeviceInfo> devices, const Scene& scene, cons
     spp_ = start_.samples_per_pixel();
     shares_.resize(devices_.size());
     published_.resize(devices_.size());
-    for (std::size_t i = 0; i < devices_.size(); ++i) shares_[i].device = devices_[i].name;
+    for (std::size_t i = 0; i < devices_.size(); ++i) {
+        shares_[i].device = devices_[i].name;
+        shares_[i].kernel_shape = resolve_kernel_shape(settings, devices_[i].is_gpu);
+    }
 }
 
 DeviceFarm::~DeviceFarm() {

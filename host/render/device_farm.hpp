@@ -28,6 +28,7 @@ namespace clpath {
 // What one device did.
 struct DeviceShare {
     std::string device;
+    KernelShape kernel_shape = KernelShape::Mega;  // the shape its kernels took (resolve_kernel_shape)
     std::uint64_t chunks = 0;
     std::uint64_t samples_per_pixel = 0;  // its share of the image's samples
     std::uint64_t rays = 0, nonfinite = 0;

@@ -14,6 +14,10 @@ namespace {
 
 constexpr std::uint32_t kTile = CLP_TILE;  // one definition: kernels/shared_structs.h
 constexpr std::size_t kWorkGroup = 64;
+// The wavefront's paths in flight at most (its state is about 170 bytes a path).
+constexpr std::uint32_t kWavefrontPaths = 1u << 20;
+// Rows of float4 per path and per shadow ray (kernels/wavefront.cl).
+constexpr std::size_t kPathRows = 5, kShadowRows = 4;
 
 // The work-items of a film: whole tiles, so the last row and column of tiles are padded.
 std::uint32_t tiled_pixel_count(const Film& film) {
@@ -32,21 +36,34 @@ IntegratorProgram::IntegratorProgram(Context& ctx, const SceneSummary& scene, co
         throw Error(std::string("internal: scene '") + scene.name + "' was prepared with the " +
                     accel_name(scene.accel) + " structure, the settings ask for " + accel_name(settings.accel));
     features_ = kernel_features(scene_features_, settings_);
+    shape_ = resolve_kernel_shape(settings_, ctx.device().is_gpu);
     params_ = ctx.buffer(sizeof(FrameParams), CL_MEM_READ_ONLY, "frame parameters");
     counters_ = ctx.buffer(sizeof(Counters), CL_MEM_READ_WRITE, "counters");
     compile();
 }
 
 void IntegratorProgram::compile() {
-    const ProgramSpec spec = integrator_program(features_, kernel_shape(ctx_.device()));
+    const bool wavefront = shape_ == KernelShape::Wavefront;
+    const KernelCode code = kernel_code(ctx_.device());
+    const ProgramSpec spec = wavefront ? wavefront_program(features_, code) : integrator_program(features_, code);
     BuildResult built = build_program(ctx_, variant_source(spec.roots, variant_), variant_options(spec.options, variant_));
+    wf_ = WavefrontKernels{};
     render_ = Kernel();
     resolve_ = Kernel();
     add_exact_ = Kernel();
     program_ = std::move(built.program);
     compile_seconds_ = built.seconds;
     from_cache_ = built.from_cache;
-    render_ = ctx_.kernel(program_.get(), "render_paths");
+    if (wavefront) {
+        wf_.camera = ctx_.kernel(program_.get(), "wf_camera");
+        wf_.trace = ctx_.kernel(program_.get(), "wf_trace");
+        wf_.shade = ctx_.kernel(program_.get(), "wf_shade");
+        wf_.shadow = ctx_.kernel(program_.get(), "wf_shadow");
+        wf_.next_bounce = ctx_.kernel(program_.get(), "wf_next_bounce");
+        wf_.accumulate = ctx_.kernel(program_.get(), "wf_accumulate");
+    } else {
+        render_ = ctx_.kernel(program_.get(), "render_paths");
+    }
     resolve_ = ctx_.kernel(program_.get(), "film_resolve");
     add_exact_ = ctx_.kernel(program_.get(), "film_add_exact");
 }
@@ -58,15 +75,18 @@ void IntegratorProgram::set_settings(const RenderSettings& settings) {
                     accel_name(settings_.accel) + "); make a new renderer for " + accel_name(settings.accel));
     settings_ = settings;
     const KernelFeatures f = kernel_features(scene_features_, settings_);
-    if (!(f == features_)) {
+    const KernelShape shape = resolve_kernel_shape(settings_, ctx_.device().is_gpu);
+    if (!(f == features_) || shape != shape_) {
         features_ = f;
+        shape_ = shape;
         compile();
     }
     seconds_per_pixel_sample_ = 0;  // another integrator runs at another speed
 }
 
-void IntegratorProgram::launch_band(const DeviceScene& scene, Film& film, const CameraData& camera,
-                                    std::uint32_t first_pixel, std::uint32_t pixel_count, std::uint32_t samples) {
+FrameParams IntegratorProgram::frame_params(const DeviceScene& scene, const Film& film, const CameraData& camera,
+                                            std::uint32_t first_pixel, std::uint32_t pixel_count,
+                                            std::uint32_t samples) const {
     const SceneSummary& sc = scene.summary();
     FrameParams fp{};
     fp.camera = camera;
@@ -91,6 +111,12 @@ void IntegratorProgram::launch_band(const DeviceScene& scene, Film& film, const 
     fp.env_rot_sin = std::sin(sc.environment_rotation);
     fp.scene_flags = (sc.features.normals ? CLP_SCENE_NORMALS : 0u) | sc.surface_flags;
     fp.attr_stride = sc.attr_stride;
+    return fp;
+}
+
+void IntegratorProgram::launch_band(const DeviceScene& scene, Film& film, const CameraData& camera,
+                                    std::uint32_t first_pixel, std::uint32_t pixel_count, std::uint32_t samples) {
+    const FrameParams fp = frame_params(scene, film, camera, first_pixel, pixel_count, samples);
     // Enqueued without waiting: the parameters are read from this slot's
     // copy, the counters land in it; the slot is harvested when it comes
     // round again or when add_samples ends, so the device always has the
@@ -102,22 +128,86 @@ void IntegratorProgram::launch_band(const DeviceScene& scene, Film& film, const 
     p.work = double(pixel_count) * samples;
     ctx_.write_async(params_, &p.params, sizeof p.params);
     ctx_.fill_async(counters_, 0);
-    scene.bind(render_, 0);
-    render_.arg(DeviceScene::kArgCount, params_)
-        .arg(DeviceScene::kArgCount + 1, film.accumulation_buffer())
-        .arg(DeviceScene::kArgCount + 2, counters_);
-    p.kernel = ctx_.launch(render_, pixel_count, kWorkGroup, true);
+    if (shape_ == KernelShape::Wavefront) {
+        launch_waves(scene, film, p, pixel_count, samples);
+    } else {
+        scene.bind(render_, 0);
+        render_.arg(DeviceScene::kArgCount, params_)
+            .arg(DeviceScene::kArgCount + 1, film.accumulation_buffer())
+            .arg(DeviceScene::kArgCount + 2, counters_);
+        p.first_kernel = ctx_.launch(render_, pixel_count, kWorkGroup, true);
+    }
     p.counters_read = ctx_.read_async(counters_, &p.counters, sizeof p.counters, true);
+}
+
+void IntegratorProgram::ensure_wavefront_buffers(std::uint32_t paths) {
+    if (paths <= wf_.capacity) return;
+    const std::size_t n = paths;
+    ctx_.check_fits({{"wavefront path state", n * kPathRows * 16},
+                     {"wavefront hits", n * 16},
+                     {"wavefront shadow rays", n * kShadowRows * 16},
+                     {"wavefront queues", 2 * n * sizeof(cl_uint)}});
+    wf_.paths = ctx_.buffer(n * kPathRows * 16, CL_MEM_READ_WRITE, "wavefront path state");
+    wf_.hits = ctx_.buffer(n * 16, CL_MEM_READ_WRITE, "wavefront hits");
+    wf_.shadows = ctx_.buffer(n * kShadowRows * 16, CL_MEM_READ_WRITE, "wavefront shadow rays");
+    wf_.queues[0] = ctx_.buffer(n * sizeof(cl_uint), CL_MEM_READ_WRITE, "wavefront queue");
+    wf_.queues[1] = ctx_.buffer(n * sizeof(cl_uint), CL_MEM_READ_WRITE, "wavefront queue");
+    wf_.counts = ctx_.buffer(CLP_WF_COUNT_SLOTS * sizeof(cl_uint), CL_MEM_READ_WRITE, "wavefront queue lengths");
+    wf_.capacity = paths;
+}
+
+void IntegratorProgram::launch_waves(const DeviceScene& scene, Film& film, PendingLaunch& p,
+                                     std::uint32_t pixel_count, std::uint32_t samples) {
+    ensure_wavefront_buffers(pixel_count);
+    const cl_uint cap = wf_.capacity;
+    // On a CPU the queue lengths are read back after each bounce to size the
+    // next launches (a read costs microseconds there, an idle work-item
+    // does not); a GPU runs every bounce over the whole band, the work-items
+    // past the queue's end returning at once, and never waits for the host.
+    const bool read_lengths = !ctx_.device().is_gpu;
+    scene.bind(wf_.trace, 0);
+    scene.bind(wf_.shade, 0);
+    scene.bind(wf_.shadow, 0);
+    const cl_uint k = DeviceScene::kArgCount;
+    wf_.camera.arg(0, params_).arg(2, wf_.paths).arg(3, cap).arg(5, wf_.counts);
+    wf_.trace.arg(k, params_).arg(k + 1, wf_.paths).arg(k + 2, cap).arg(k + 4, wf_.counts).arg(k + 5, wf_.hits)
+        .arg(k + 6, counters_);
+    wf_.shade.arg(k, params_).arg(k + 1, wf_.paths).arg(k + 2, cap).arg(k + 5, wf_.counts).arg(k + 6, wf_.hits)
+        .arg(k + 7, wf_.shadows);
+    wf_.shadow.arg(k, params_).arg(k + 1, wf_.paths).arg(k + 2, cap).arg(k + 3, wf_.counts).arg(k + 4, wf_.shadows)
+        .arg(k + 5, counters_);
+    wf_.next_bounce.arg(0, wf_.counts);
+    wf_.accumulate.arg(0, params_).arg(1, wf_.paths).arg(2, cap).arg(3, film.accumulation_buffer()).arg(4, counters_);
+    for (cl_uint wave = 0; wave < samples; ++wave) {
+        ctx_.fill_async(wf_.counts, 0);
+        wf_.camera.arg(1, wave).arg(4, wf_.queues[0]);
+        cl_event e = ctx_.launch(wf_.camera, pixel_count, kWorkGroup, wave == 0);
+        if (wave == 0) p.first_kernel = e;
+        // Bounce d traces the rays of the paths still alive after d bounces:
+        // at most CLP_MAX_DEPTH + 1 closest hits a path.
+        for (std::uint32_t d = 0, in = 0; d <= settings_.max_depth; ++d, in ^= 1u) {
+            std::size_t global = pixel_count;
+            if (read_lengths) {
+                cl_uint queued = 0;
+                ctx_.read(wf_.counts, &queued, sizeof queued);
+                if (queued == 0) break;
+                global = queued;
+            }
+            wf_.trace.arg(k + 3, wf_.queues[in]);
+            wf_.shade.arg(k + 3, wf_.queues[in]).arg(k + 4, wf_.queues[in ^ 1u]);
+            ctx_.launch(wf_.trace, global, kWorkGroup);
+            ctx_.launch(wf_.shade, global, kWorkGroup);
+            ctx_.launch(wf_.shadow, global, kWorkGroup);
+            ctx_.launch(wf_.next_bounce, 1, 0);
+        }
+        ctx_.launch(wf_.accumulate, pixel_count, kWorkGroup);
+    }
 }
 
 void IntegratorProgram::harvest(PendingLaunch& p) {
     if (!p.counters_read) return;
-    const cl_int rc = clWaitForEvents(1, &p.counters_read);
-    clReleaseEvent(p.counters_read);
-    p.counters_read = nullptr;
-    const double dt = event_seconds(p.kernel);  // releases it
-    p.kernel = nullptr;
-    cl_check(rc, "waiting for a render launch");
+    // From the launch's first kernel to its counters: its time on the device.
+    const double dt = event_span_seconds(std::exchange(p.first_kernel, nullptr), std::exchange(p.counters_read, nullptr));
     stats_.rays += p.counters.rays;
     stats_.nonfinite += p.counters.nonfinite;
     ++stats_.launches;
@@ -166,6 +256,7 @@ void IntegratorProgram::add_samples(const DeviceScene& scene, Film& film, const 
                 samples = std::uint32_t(std::clamp(target / per_frame, 1.0, double(n)));
             }
         }
+        if (shape_ == KernelShape::Wavefront && band > kWavefrontPaths) band = kWavefrontPaths;
         samples = std::uint32_t(std::min<double>(samples, std::max(1.0, max_work / all)));
         if (double(band) * samples > max_work)
             band = std::max<std::uint32_t>(kWorkGroup, std::uint32_t(max_work / samples) / kWorkGroup * kWorkGroup);

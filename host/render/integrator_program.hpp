@@ -49,6 +49,8 @@ public:
     void set_settings(const RenderSettings& settings);
     const RenderSettings& settings() const { return settings_; }
     const KernelFeatures& features() const { return features_; }
+    // The shape the kernels were built in (settings' Auto resolved for this device).
+    KernelShape shape() const { return shape_; }
     double compile_seconds() const { return compile_seconds_; }
     bool compiled_from_cache() const { return from_cache_; }
 
@@ -71,11 +73,24 @@ private:
     struct PendingLaunch {
         FrameParams params{};
         Counters counters{};
-        cl_event kernel = nullptr, counters_read = nullptr;
+        cl_event first_kernel = nullptr, counters_read = nullptr;
         double work = 0;  // pixels x samples
     };
 
+    // The wavefront's kernels and its path state, for up to `capacity` paths.
+    struct WavefrontKernels {
+        Kernel camera, trace, shade, shadow, next_bounce, accumulate;
+        Buffer paths, hits, shadows, queues[2], counts;
+        std::uint32_t capacity = 0;
+    };
+
     void compile();
+    FrameParams frame_params(const DeviceScene& scene, const Film& film, const CameraData& camera,
+                             std::uint32_t first_pixel, std::uint32_t pixel_count, std::uint32_t samples) const;
+    void ensure_wavefront_buffers(std::uint32_t paths);
+    // Enqueues a band's samples as waves of the wavefront kernels.
+    void launch_waves(const DeviceScene& scene, Film& film, PendingLaunch& p, std::uint32_t pixel_count,
+                      std::uint32_t samples);
     // Waits for a pending launch and takes its counters and time.
     void harvest(PendingLaunch& p);
     // Waits for every pending launch.
@@ -87,10 +102,12 @@ private:
     SceneFeatures scene_features_;
     RenderSettings settings_;
     KernelFeatures features_;
+    KernelShape shape_ = KernelShape::Mega;
     KernelVariant variant_;
     Buffer params_, counters_;
     Program program_;
     Kernel render_, resolve_, add_exact_;
+    WavefrontKernels wf_;
     LaunchStats stats_;
     double compile_seconds_ = 0;
     bool from_cache_ = false;

@@ -16,7 +16,7 @@ namespace {
 const char* const kMaterialNames[CLP_MAT_KIND_COUNT] = {CLP_MATERIAL_KINDS(CLP_MAT_NAME)};
 #undef CLP_MAT_NAME
 
-std::string shape_options(KernelShape shape) { return shape == KernelShape::Gpu ? " -DCLP_TARGET_GPU" : ""; }
+std::string code_options(KernelCode code) { return code == KernelCode::Gpu ? " -DCLP_TARGET_GPU" : ""; }
 
 // A feature a scene can hold, by name, and how to switch it on.
 struct SceneSwitch {
@@ -61,7 +61,7 @@ SceneFeatures diffuse_only() {
 // Programs in order, merged by (roots, options).
 class ProgramList {
 public:
-    explicit ProgramList(KernelShape shape) : shape_(shape) {}
+    explicit ProgramList(KernelCode code) : code_(code) {}
 
     void add(ProgramSpec p, const std::string& covers) {
         std::string key;
@@ -80,67 +80,90 @@ public:
     // The integrator program of a scene with these features rendered with these settings.
     void add_render(const std::string& name, const SceneFeatures& scene, const RenderSettings& settings,
                     const std::string& covers) {
-        ProgramSpec p = integrator_program(kernel_features(scene, settings), shape_);
+        ProgramSpec p = integrator_program(kernel_features(scene, settings), code_);
         p.name = name;
+        add(std::move(p), covers);
+    }
+    // The same scene's wavefront program (wavefront.cl).
+    void add_wavefront(const std::string& name, const SceneFeatures& scene, const RenderSettings& settings,
+                       const std::string& covers) {
+        ProgramSpec p = wavefront_program(kernel_features(scene, settings), code_);
+        p.name = "wf-" + name;
         add(std::move(p), covers);
     }
     std::vector<ProgramSpec> take() { return std::move(list_); }
 
 private:
-    KernelShape shape_;
+    KernelCode code_;
     std::vector<ProgramSpec> list_;
     std::map<std::string, std::size_t> index_;
 };
 
 }  // namespace
 
-KernelShape kernel_shape(const DeviceInfo& device) {
-    if (const char* forced = std::getenv("CLPATH_KERNEL_SHAPE"); forced && *forced) {
+KernelCode kernel_code(const DeviceInfo& device) {
+    if (const char* forced = std::getenv("CLPATH_KERNEL_CODE"); forced && *forced) {
         try {
-            return parse_kernel_shape(forced);
+            return parse_kernel_code(forced);
         } catch (const UsageError&) {
-            throw UsageError(std::string("CLPATH_KERNEL_SHAPE=") + forced + ": choose gpu or cpu");
+            throw UsageError(std::string("CLPATH_KERNEL_CODE=") + forced + ": choose gpu or cpu");
         }
     }
-    return device.is_gpu ? KernelShape::Gpu : KernelShape::Cpu;
+    return device.is_gpu ? KernelCode::Gpu : KernelCode::Cpu;
 }
 
-const char* kernel_shape_name(KernelShape shape) { return shape == KernelShape::Gpu ? "gpu" : "cpu"; }
+const char* kernel_code_name(KernelCode code) { return code == KernelCode::Gpu ? "gpu" : "cpu"; }
 
-KernelShape parse_kernel_shape(const std::string& name) {
-    if (name == "gpu") return KernelShape::Gpu;
-    if (name == "cpu") return KernelShape::Cpu;
-    throw UsageError("unknown kernel shape '" + name + "' (choose gpu or cpu)");
+KernelCode parse_kernel_code(const std::string& name) {
+    if (name == "gpu") return KernelCode::Gpu;
+    if (name == "cpu") return KernelCode::Cpu;
+    throw UsageError("unknown kernel code '" + name + "' (choose gpu or cpu)");
 }
 
-ProgramSpec integrator_program(const KernelFeatures& features, KernelShape shape) {
+ProgramSpec integrator_program(const KernelFeatures& features, KernelCode code) {
     ProgramSpec p;
     p.name = std::string(integrator_name(features.integrator));
     p.roots = renderer_kernel_files();
-    p.options = build_options(features) + shape_options(shape);
+    p.options = build_options(features) + code_options(code);
     p.kernels = {"render_paths", "film_resolve", "film_add_exact"};
     return p;
 }
 
-ProgramSpec ray_batch_program(Accel accel, KernelShape shape) {
+ProgramSpec wavefront_program(const KernelFeatures& features, KernelCode code) {
+    ProgramSpec p;
+    p.name = std::string("wf-") + integrator_name(features.integrator);
+    p.roots = wavefront_kernel_files();
+    p.options = build_options(features) + code_options(code);
+    p.kernels = {"wf_camera",     "wf_trace",      "wf_shade",     "wf_shadow",
+                 "wf_next_bounce", "wf_accumulate", "film_resolve", "film_add_exact"};
+    return p;
+}
+
+bool has_wavefront(std::uint32_t integrator) {
+    return integrator == CLP_INTEGRATOR_PATH || integrator == CLP_INTEGRATOR_PATH_BSDF;
+}
+
+ProgramSpec ray_batch_program(Accel accel, KernelCode code) {
     ProgramSpec p;
     p.name = std::string("rays-") + accel_name(accel);
     p.roots = {"ray_batches.cl"};
     p.options = std::string(accel == Accel::Flat ? "-cl-std=CL1.2 -DCLP_ACCEL_FLAT" : "-cl-std=CL1.2") +
-                shape_options(shape);
+                code_options(code);
     p.kernels = {"batch_primary_rays", "batch_secondary_rays", "batch_trace_closest", "batch_trace_any"};
     return p;
 }
 
-std::vector<ProgramSpec> scene_programs(const NamedSceneFeatures& scene, KernelShape shape) {
-    ProgramList list(shape);
+std::vector<ProgramSpec> scene_programs(const NamedSceneFeatures& scene, KernelCode code) {
+    ProgramList list(code);
     list.add_render("scene-" + scene.name, scene.features, scene.settings, "scene " + scene.name);
-    for (Accel a : {Accel::Bvh, Accel::Flat}) list.add(ray_batch_program(a, shape), "bench rays " + scene.name);
+    if (has_wavefront(scene.settings.integrator))
+        list.add_wavefront("scene-" + scene.name, scene.features, scene.settings, "scene " + scene.name + ", wavefront");
+    for (Accel a : {Accel::Bvh, Accel::Flat}) list.add(ray_batch_program(a, code), "bench rays " + scene.name);
     return list.take();
 }
 
-std::vector<ProgramSpec> covering_programs(const std::vector<NamedSceneFeatures>& scenes, KernelShape shape) {
-    ProgramList list(shape);
+std::vector<ProgramSpec> covering_programs(const std::vector<NamedSceneFeatures>& scenes, KernelCode code) {
+    ProgramList list(code);
     const RenderSettings defaults;
     const SceneFeatures all = every_scene_feature();
     SceneFeatures all_opaque = all;
@@ -187,9 +210,24 @@ std::vector<ProgramSpec> covering_programs(const std::vector<NamedSceneFeatures>
         bsdf.integrator = CLP_INTEGRATOR_PATH_BSDF;
         list.add_render("path-bsdf-" + what, f, bsdf, "BSDF sampling only, " + what);
     }
-    for (Accel a : {Accel::Bvh, Accel::Flat}) list.add(ray_batch_program(a, shape), "bench rays");
+    // The wavefront shape of both light-transport integrators: its kernels
+    // include the megakernel's path and scene code (path.cl, scene_data.cl)
+    // whose switches the programs above cover pairwise, so every feature on
+    // (alpha off and on) and diffuse alone, with each structure.
+    for (const std::uint32_t i : {CLP_INTEGRATOR_PATH, CLP_INTEGRATOR_PATH_BSDF}) {
+        RenderSettings s = defaults;
+        s.integrator = i;
+        const std::string n = integrator_name(i);
+        list.add_wavefront(n + "-diffuse", diffuse_only(), s, "wavefront " + n + ", diffuse");
+        s.all_features = true;
+        list.add_wavefront(n + "-all", all_opaque, s, "wavefront " + n + ", every feature");
+        list.add_wavefront(n + "-all-alpha", all, s, "wavefront " + n + ", every feature and alpha");
+        s.accel = Accel::Flat;
+        list.add_wavefront(n + "-flat-all", all_opaque, s, "wavefront " + n + ", flat object list, every feature");
+    }
+    for (Accel a : {Accel::Bvh, Accel::Flat}) list.add(ray_batch_program(a, code), "bench rays");
     for (const auto& sc : scenes)
-        for (auto& p : scene_programs(sc, shape)) {
+        for (auto& p : scene_programs(sc, code)) {
             const std::string covers = p.covers;
             list.add(std::move(p), covers);
         }

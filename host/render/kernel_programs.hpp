@@ -14,16 +14,17 @@
 
 namespace clpath {
 
-// Which shape of the kernels a device gets. GPU programs are built with
+// Which code of the kernels a device gets (whatever its integrator shape,
+// megakernel or wavefront: settings.hpp). GPU programs are built with
 // -DCLP_TARGET_GPU, which selects the code paths shaped for GPUs (fewer
 // registers, no indexed private arrays outside the traversal stack); CPUs
 // keep the paths measured fastest on PoCL. Both compute the same answers.
-enum class KernelShape { Cpu, Gpu };
-// Gpu for OpenCL GPU devices, else Cpu; CLPATH_KERNEL_SHAPE=gpu|cpu chooses
-// for every device (the tests run each shape on PoCL and on Oclgrind).
-KernelShape kernel_shape(const DeviceInfo& device);
-const char* kernel_shape_name(KernelShape shape);    // "cpu", "gpu"
-KernelShape parse_kernel_shape(const std::string& name);  // throws clpath::UsageError
+enum class KernelCode { Cpu, Gpu };
+// Gpu for OpenCL GPU devices, else Cpu; CLPATH_KERNEL_CODE=gpu|cpu chooses
+// for every device (the tests run each code on PoCL and on Oclgrind).
+KernelCode kernel_code(const DeviceInfo& device);
+const char* kernel_code_name(KernelCode code);    // "cpu", "gpu"
+KernelCode parse_kernel_code(const std::string& name);  // throws clpath::UsageError
 
 // One program: what clBuildProgram receives is program_source(roots) and options.
 struct ProgramSpec {
@@ -35,9 +36,13 @@ struct ProgramSpec {
 };
 
 // The renderer's program for these features (render_paths, film_resolve, film_add_exact).
-ProgramSpec integrator_program(const KernelFeatures& features, KernelShape shape);
+ProgramSpec integrator_program(const KernelFeatures& features, KernelCode code);
+// The wavefront integrator's program for these features (wavefront.cl: wf_*,
+// film_resolve, film_add_exact), for the integrators that have one.
+ProgramSpec wavefront_program(const KernelFeatures& features, KernelCode code);
+bool has_wavefront(std::uint32_t integrator);
 // The ray-batch benchmark's program (clpath bench rays).
-ProgramSpec ray_batch_program(Accel accel, KernelShape shape);
+ProgramSpec ray_batch_program(Accel accel, KernelCode code);
 
 // A scene's features under a name, for covering_programs.
 struct NamedSceneFeatures {
@@ -46,9 +51,10 @@ struct NamedSceneFeatures {
     RenderSettings settings;  // the scene's own render settings
 };
 
-// The programs of one scene rendered with its settings, and benchmarked with
-// bench rays (both structures).
-std::vector<ProgramSpec> scene_programs(const NamedSceneFeatures& scene, KernelShape shape);
+// The programs of one scene rendered with its settings (the megakernel, and the
+// wavefront where its integrator has one), and benchmarked with bench rays
+// (both structures).
+std::vector<ProgramSpec> scene_programs(const NamedSceneFeatures& scene, KernelCode code);
 
 // A set of programs that covers every program a scene can select, with the
 // scenes' own programs added (duplicates by source and options merged, their
@@ -66,6 +72,6 @@ std::vector<ProgramSpec> scene_programs(const NamedSceneFeatures& scene, KernelS
 // kernel_features() and build_options(), the functions a render uses, from
 // SceneFeatures and RenderSettings; a new #if on three switches needs a
 // program here.
-std::vector<ProgramSpec> covering_programs(const std::vector<NamedSceneFeatures>& scenes, KernelShape shape);
+std::vector<ProgramSpec> covering_programs(const std::vector<NamedSceneFeatures>& scenes, KernelCode code);
 
 }  // namespace clpath

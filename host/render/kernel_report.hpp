@@ -2,7 +2,7 @@
 // The portability gate's work: clpath's programs (kernel_programs.hpp)
 // written out as sources with their build options, and compiled for GPU
 // targets offline (cl/offline_compile.hpp), with the resources of every
-// kernel and the budgets the GPU-shaped kernels are held to.
+// kernel and the budgets the GPU code is held to.
 #include <functional>
 #include <string>
 #include <vector>
@@ -50,11 +50,13 @@ struct KernelBudget {
     const char* target;
     int max_registers;
     int max_stack_bytes;
+    const char* with_option;     // applies only to programs built with this option (nullptr: any)
+    const char* without_option;  // applies only to programs built without it (nullptr: any)
 };
 const std::vector<KernelBudget>& kernel_budgets();
 
 // "program kernel target: 95 registers > 64" lines for every kernel over its
-// budget (programs compiled for the GPU shape only).
+// budget (programs compiled as GPU code only).
 std::vector<std::string> budget_violations(const std::vector<ProgramCompile>& compiles);
 
 // The rows as CSV (program,kernel,target,registers,sgprs,stack_bytes,spills,options,selected_by;

@@ -4,8 +4,32 @@
 
 namespace clpath {
 
+const std::vector<std::string>& kernel_shape_names() {
+    static const std::vector<std::string> names{"auto", "mega", "wavefront"};  // KernelShape
+    return names;
+}
+
+KernelShape parse_kernel_shape(const std::string& name) {
+    const auto& names = kernel_shape_names();
+    for (std::size_t i = 0; i < names.size(); ++i)
+        if (names[i] == name) return KernelShape(i);
+    throw Error("unknown kernel shape '" + name + "' (choose one of: auto, mega, wavefront)");
+}
+
+const char* kernel_shape_name(KernelShape shape) { return kernel_shape_names().at(std::size_t(shape)).c_str(); }
+
+KernelShape resolve_kernel_shape(const RenderSettings& s, bool gpu) {
+    const bool light_transport = s.integrator == CLP_INTEGRATOR_PATH || s.integrator == CLP_INTEGRATOR_PATH_BSDF;
+    if (s.kernel_shape == KernelShape::Wavefront && !light_transport)
+        throw Error(std::string("the wavefront kernels render the path and path-bsdf integrators; '") +
+                    integrator_name(s.integrator) + "' renders one bounce, as the megakernel (--kernel mega or auto)");
+    if (s.kernel_shape != KernelShape::Auto) return s.kernel_shape;
+    return gpu && light_transport ? KernelShape::Wavefront : KernelShape::Mega;
+}
+
 void validate_settings(const RenderSettings& s) {
     if (s.integrator >= CLP_INTEGRATOR_COUNT) throw Error("internal: unknown integrator");
+    resolve_kernel_shape(s, false);  // the wavefront asked for an integrator it does not have
     if (s.rr_rule == CLP_RR_DEPTH && s.max_depth < 1)
         throw Error("the depth Russian roulette rule needs a maximum depth of at least 1");
 }

@@ -21,6 +21,15 @@
 
 namespace clpath {
 
+// The shape of the path tracer's kernels: one kernel per path
+// (kernels/integrator.cl), or the wavefront of small kernels over queues of
+// paths (kernels/wavefront.cl). Auto takes the one measured faster on the
+// device's kind (resolve_kernel_shape).
+enum class KernelShape : std::uint32_t { Auto, Mega, Wavefront };
+KernelShape parse_kernel_shape(const std::string& name);  // clpath::Error naming the choices
+const char* kernel_shape_name(KernelShape shape);
+const std::vector<std::string>& kernel_shape_names();    // "auto", "mega", "wavefront"
+
 struct RenderSettings {
     std::uint32_t integrator = CLP_INTEGRATOR_PATH;
     std::uint32_t max_depth = 16;  // bounces; 0 shows emitters only
@@ -39,11 +48,20 @@ struct RenderSettings {
     // The acceleration structure: the BVH, or the thesis renderer's one box
     // per object (the baseline of the benchmarks). Fixed for a Renderer's life.
     Accel accel = Accel::Bvh;
+    KernelShape kernel_shape = KernelShape::Auto;
 };
 
 // Throws clpath::Error for settings no render can use (the depth roulette rule
 // with no bounce, say).
 void validate_settings(const RenderSettings& settings);
+
+// The shape a render takes on a device: Auto becomes the wavefront on GPUs and
+// the megakernel on CPUs (README, "Kernel shapes": measured on PoCL; on GPUs
+// the wavefront's kernels fit the register budget the megakernel cannot).
+// Only the light-transport integrators (path, path-bsdf) have a wavefront
+// shape: the one-bounce views (ao, normals, ...) run as the megakernel under
+// Auto, and asking for the wavefront with them is an error.
+KernelShape resolve_kernel_shape(const RenderSettings& settings, bool gpu);
 
 // The settings a scene file asks for (its "render" block).
 RenderSettings settings_from_scene(const SceneRenderDefaults& defaults);

@@ -69,7 +69,7 @@ struct DeviceHits {
 
 DeviceHits trace(const Bvh& structure, Accel accel, const std::vector<BatchRay>& rays) {
     Context& ctx = test::device();
-    const ProgramSpec spec = ray_batch_program(accel, kernel_shape(ctx.device()));
+    const ProgramSpec spec = ray_batch_program(accel, kernel_code(ctx.device()));
     BuildResult built = build_program(ctx, program_source(spec.roots), spec.options);
     Kernel closest = ctx.kernel(built.program.get(), "batch_trace_closest");
     Kernel any = ctx.kernel(built.program.get(), "batch_trace_any");

@@ -40,39 +40,39 @@ foreach(target sm_90 gfx90a gfx1100)
                          PASS_REGULAR_EXPRESSION "for ${target} [^\n]*\nunresolved symbols after linking libclc:[^\n]* normalize3")
 endforeach()
 
-# Both shapes of the kernels run on both OpenCL implementations: PoCL (a CPU
-# device, which gets the CPU shape) with the GPU shape, and Oclgrind (which
-# calls itself a GPU) with the CPU shape. On PoCL the GPU shape must give the
-# CPU shape's answers bit for bit (bench rays, each batch also checked against
+# Both codes of the kernels (kernel_programs.hpp) run on both OpenCL implementations: PoCL (a CPU
+# device, which gets the CPU code) with the GPU code, and Oclgrind (which
+# calls itself a GPU) with the CPU code. On PoCL the GPU code must give the
+# CPU code's answers bit for bit (bench rays, each batch also checked against
 # its double-precision CPU traversal) and the same image (bench render-ab; a
 # scene with every material, light and environment kind, and the textured
 # scene with its alpha-masked fence).
-add_test(NAME kernel_shape.gpu_on_pocl_bench_rays
+add_test(NAME kernel_code.gpu_on_pocl_bench_rays
          COMMAND $<TARGET_FILE:clpath> bench rays ${CMAKE_SOURCE_DIR}/scenes/bunny.json --quick --no-embree
                  --ab-options=-DCLP_TARGET_GPU)
-set_tests_properties(kernel_shape.gpu_on_pocl_bench_rays PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}"
+set_tests_properties(kernel_code.gpu_on_pocl_bench_rays PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}"
     LABELS "render" TIMEOUT 600 PASS_REGULAR_EXPRESSION
     "primary: [0-9]+ rays [^\n]* 0 mismatched[^\n]*\n  A/B: [^\n]*answers differ for 0 rays\nshadow: [0-9]+ rays [^\n]* 0 mismatched[^\n]*\n  A/B: [^\n]*answers differ for 0 rays\ndiffuse: [0-9]+ rays [^\n]* 0 mismatched[^\n]*\n  A/B: [^\n]*answers differ for 0 rays")
 foreach(scene kernels/data/oclgrind-features.json ../scenes/textured/textured.json)
     get_filename_component(name ${scene} NAME_WE)
-    add_test(NAME kernel_shape.gpu_on_pocl_render.${name}
+    add_test(NAME kernel_code.gpu_on_pocl_render.${name}
              COMMAND $<TARGET_FILE:clpath> bench render-ab ${CMAKE_CURRENT_SOURCE_DIR}/${scene} --spp 2 --width 32
                      --height 24 --ab-options=-DCLP_TARGET_GPU)
-    set_tests_properties(kernel_shape.gpu_on_pocl_render.${name} PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}"
+    set_tests_properties(kernel_code.gpu_on_pocl_render.${name} PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}"
                          LABELS "render" TIMEOUT 600 PASS_REGULAR_EXPRESSION "images differ in 0 of 768 pixels")
 endforeach()
 if(OCLGRIND)
     foreach(integrator path ao)
-        clpath_oclgrind_test(cpu_shape.render.${integrator} OPTIONS ${OCLGRIND_BASIC}
+        clpath_oclgrind_test(cpu_code.render.${integrator} OPTIONS ${OCLGRIND_BASIC}
                              COMMAND $<TARGET_FILE:clpath> render ${OCLGRIND_SCENE} --all-features -i ${integrator}
-                                     -q -o ${OCLGRIND_LOGS}/cpu-shape-render-${integrator}.pfm
+                                     -q -o ${OCLGRIND_LOGS}/cpu-code-render-${integrator}.pfm
                              OUTPUT "device=\"Oclgrind Simulator\" .*integrator=${integrator} .*nonfinite=0")
-        set_tests_properties(oclgrind.cpu_shape.render.${integrator} PROPERTIES
-                             ENVIRONMENT "CLPATH_CACHE_DIR=off;CLPATH_KERNEL_SHAPE=cpu")
+        set_tests_properties(oclgrind.cpu_code.render.${integrator} PROPERTIES
+                             ENVIRONMENT "CLPATH_CACHE_DIR=off;CLPATH_KERNEL_CODE=cpu")
     endforeach()
-    clpath_oclgrind_test(cpu_shape.bench_rays.bvh OPTIONS ${OCLGRIND_STRICT}
+    clpath_oclgrind_test(cpu_code.bench_rays.bvh OPTIONS ${OCLGRIND_STRICT}
                          COMMAND $<TARGET_FILE:clpath> bench rays ${OCLGRIND_SCENE} --width 4 --height 4 --launches 1
                          OUTPUT "primary: 256 rays .* 0 mismatched.*shadow: .* 0 mismatched.*diffuse: .* 0 mismatched")
-    set_tests_properties(oclgrind.cpu_shape.bench_rays.bvh PROPERTIES
-                         ENVIRONMENT "CLPATH_CACHE_DIR=off;CLPATH_KERNEL_SHAPE=cpu")
+    set_tests_properties(oclgrind.cpu_code.bench_rays.bvh PROPERTIES
+                         ENVIRONMENT "CLPATH_CACHE_DIR=off;CLPATH_KERNEL_CODE=cpu")
 endif()

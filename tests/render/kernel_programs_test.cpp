@@ -32,41 +32,41 @@ bool has_define(const std::string& options, const std::string& name) {
 
 }  // namespace
 
-TEST(KernelPrograms, ShapesDifferByTheGpuDefineOnly) {
+TEST(KernelPrograms, CodesDifferByTheGpuDefineOnly) {
     KernelFeatures f;
     f.materials[CLP_MAT_DIFFUSE] = true;
-    const ProgramSpec cpu = integrator_program(f, KernelShape::Cpu), gpu = integrator_program(f, KernelShape::Gpu);
+    const ProgramSpec cpu = integrator_program(f, KernelCode::Cpu), gpu = integrator_program(f, KernelCode::Gpu);
     EXPECT_EQ(cpu.options, build_options(f));
     EXPECT_EQ(gpu.options, build_options(f) + " -DCLP_TARGET_GPU");
     EXPECT_EQ(cpu.roots, renderer_kernel_files());
-    EXPECT_FALSE(has_define(ray_batch_program(Accel::Bvh, KernelShape::Cpu).options, "CLP_TARGET_GPU"));
-    EXPECT_TRUE(has_define(ray_batch_program(Accel::Flat, KernelShape::Gpu).options, "CLP_TARGET_GPU"));
-    EXPECT_TRUE(has_define(ray_batch_program(Accel::Flat, KernelShape::Cpu).options, "CLP_ACCEL_FLAT"));
+    EXPECT_FALSE(has_define(ray_batch_program(Accel::Bvh, KernelCode::Cpu).options, "CLP_TARGET_GPU"));
+    EXPECT_TRUE(has_define(ray_batch_program(Accel::Flat, KernelCode::Gpu).options, "CLP_TARGET_GPU"));
+    EXPECT_TRUE(has_define(ray_batch_program(Accel::Flat, KernelCode::Cpu).options, "CLP_ACCEL_FLAT"));
 }
 
-TEST(KernelPrograms, ShapeFollowsTheDeviceUnlessTheEnvironmentChooses) {
+TEST(KernelPrograms, CodeFollowsTheDeviceUnlessTheEnvironmentChooses) {
     DeviceInfo gpu, cpu;
     gpu.is_gpu = true;
     cpu.is_cpu = true;
-    const char* before = std::getenv("CLPATH_KERNEL_SHAPE");
+    const char* before = std::getenv("CLPATH_KERNEL_CODE");
     const std::string saved = before ? before : "";
-    unsetenv("CLPATH_KERNEL_SHAPE");
-    EXPECT_EQ(kernel_shape(gpu), KernelShape::Gpu);
-    EXPECT_EQ(kernel_shape(cpu), KernelShape::Cpu);
-    setenv("CLPATH_KERNEL_SHAPE", "gpu", 1);
-    EXPECT_EQ(kernel_shape(cpu), KernelShape::Gpu);
-    setenv("CLPATH_KERNEL_SHAPE", "cpu", 1);
-    EXPECT_EQ(kernel_shape(gpu), KernelShape::Cpu);
-    setenv("CLPATH_KERNEL_SHAPE", "fpga", 1);
-    EXPECT_THROW(kernel_shape(gpu), UsageError);
+    unsetenv("CLPATH_KERNEL_CODE");
+    EXPECT_EQ(kernel_code(gpu), KernelCode::Gpu);
+    EXPECT_EQ(kernel_code(cpu), KernelCode::Cpu);
+    setenv("CLPATH_KERNEL_CODE", "gpu", 1);
+    EXPECT_EQ(kernel_code(cpu), KernelCode::Gpu);
+    setenv("CLPATH_KERNEL_CODE", "cpu", 1);
+    EXPECT_EQ(kernel_code(gpu), KernelCode::Cpu);
+    setenv("CLPATH_KERNEL_CODE", "fpga", 1);
+    EXPECT_THROW(kernel_code(gpu), UsageError);
     if (before)
-        setenv("CLPATH_KERNEL_SHAPE", saved.c_str(), 1);
+        setenv("CLPATH_KERNEL_CODE", saved.c_str(), 1);
     else
-        unsetenv("CLPATH_KERNEL_SHAPE");
+        unsetenv("CLPATH_KERNEL_CODE");
 }
 
 TEST(KernelPrograms, CoveringSetHasEveryIntegratorEveryFeatureAloneAndBothRayBatchPrograms) {
-    const auto programs = by_name(covering_programs({}, KernelShape::Gpu));
+    const auto programs = by_name(covering_programs({}, KernelCode::Gpu));
     for (const auto& name : integrator_names()) {
         ASSERT_TRUE(programs.count(name + "-all")) << name;
         ASSERT_TRUE(programs.count(name + "-all-alpha")) << name;
@@ -77,6 +77,15 @@ TEST(KernelPrograms, CoveringSetHasEveryIntegratorEveryFeatureAloneAndBothRayBat
                               "path-diffuse-alpha", "path-diffuse-environment-map", "path-flat-all",
                               "path-uniform-diffuse", "path-bsdf-diffuse", "rays-bvh", "rays-flat"})
         EXPECT_TRUE(programs.count(alone)) << alone;
+    // The wavefront of both light-transport integrators, with its own kernels.
+    for (const char* wf : {"wf-path-diffuse", "wf-path-all", "wf-path-all-alpha", "wf-path-flat-all",
+                           "wf-path-bsdf-diffuse", "wf-path-bsdf-all", "wf-path-bsdf-all-alpha"}) {
+        ASSERT_TRUE(programs.count(wf)) << wf;
+        EXPECT_EQ(programs.at(wf).roots, wavefront_kernel_files()) << wf;
+        EXPECT_EQ(programs.at(wf).kernels.front(), "wf_camera") << wf;
+    }
+    EXPECT_TRUE(has_define(programs.at("wf-path-all").options, "CLP_HAS_MAT_GLTF"));
+    EXPECT_FALSE(programs.count("wf-ao-all"));
     EXPECT_EQ(programs.at("path-only-mirror").options,
               "-cl-std=CL1.2 -DCLP_HAS_MAT_MIRROR -DCLP_INTEGRATOR=0u -DCLP_MAX_DEPTH=16u -DCLP_TARGET_GPU");
     for (const auto& [name, p] : programs) EXPECT_TRUE(has_define(p.options, "CLP_TARGET_GPU")) << name;
@@ -87,7 +96,7 @@ TEST(KernelPrograms, CoveringSetHasEveryIntegratorEveryFeatureAloneAndBothRayBat
 // --all-features compiles (with alpha). A field added to SceneFeatures that
 // all_features turns on and the list misses fails here.
 TEST(KernelPrograms, EverySceneFeatureOnIsTheAllFeaturesProgram) {
-    const auto programs = covering_programs({}, KernelShape::Cpu);
+    const auto programs = covering_programs({}, KernelCode::Cpu);
     const ProgramSpec* all = nullptr;
     const ProgramSpec* switched = nullptr;
     for (const auto& p : programs) {
@@ -110,7 +119,7 @@ TEST(KernelPrograms, EverySwitchTheKernelsTestIsCompiledOnAndOff) {
             switches.insert((*it)[1]);
     }
     ASSERT_GE(switches.size(), 14u);
-    const auto gpu = covering_programs({}, KernelShape::Gpu), cpu = covering_programs({}, KernelShape::Cpu);
+    const auto gpu = covering_programs({}, KernelCode::Gpu), cpu = covering_programs({}, KernelCode::Cpu);
     for (const auto& sw : switches) {
         int on = 0, off = 0;
         for (const auto* set : {&gpu, &cpu})
@@ -124,15 +133,21 @@ TEST(KernelPrograms, AScenesProgramIsTheOneItsRenderBuilds) {
     const Scene scene = load_scene("cornell");
     const RenderSettings settings = settings_from_scene(scene.render);
     const NamedSceneFeatures named{"cornell", scene_features(scene), settings};
-    const auto programs = scene_programs(named, KernelShape::Gpu);
-    ASSERT_EQ(programs.size(), 3u);
+    const auto programs = scene_programs(named, KernelCode::Gpu);
+    ASSERT_EQ(programs.size(), 4u);
+    const KernelFeatures features = kernel_features(scene_features(scene), settings);
     EXPECT_EQ(programs[0].name, "scene-cornell");
-    EXPECT_EQ(programs[0].options,
-              integrator_program(kernel_features(scene_features(scene), settings), KernelShape::Gpu).options);
-    EXPECT_EQ(programs[1].options, ray_batch_program(Accel::Bvh, KernelShape::Gpu).options);
-    // In the covering set a scene's program that another entry already is joins it.
-    const auto all = covering_programs({named}, KernelShape::Gpu);
+    EXPECT_EQ(programs[0].options, integrator_program(features, KernelCode::Gpu).options);
+    EXPECT_EQ(programs[0].roots, renderer_kernel_files());
+    // Cornell renders with the path integrator, which has a wavefront shape.
+    EXPECT_EQ(programs[1].name, "wf-scene-cornell");
+    EXPECT_EQ(programs[1].options, wavefront_program(features, KernelCode::Gpu).options);
+    EXPECT_EQ(programs[1].roots, wavefront_kernel_files());
+    EXPECT_EQ(programs[2].options, ray_batch_program(Accel::Bvh, KernelCode::Gpu).options);
+    // In the covering set a scene's program that another entry already is
+    // joins it: one megakernel and one wavefront entry name the scene.
+    const auto all = covering_programs({named}, KernelCode::Gpu);
     int with_cornell = 0;
     for (const auto& p : all) with_cornell += p.covers.find("scene cornell") != std::string::npos;
-    EXPECT_EQ(with_cornell, 1);
+    EXPECT_EQ(with_cornell, 2);
 }

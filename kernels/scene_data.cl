@@ -1,0 +1,163 @@
+/* What every kernel that follows paths through the scene shares: the scene
+ * as one struct (SceneData, made from the kernel's CLP_SCENE_PARAMS), the
+ * surface at a hit, closest-hit and shadow tracing, Russian roulette and the
+ * tiled order of pixels. The megakernel (integrator.cl) and the wavefront
+ * kernels (wavefront.cl) both build on it. */
+#ifndef CLP_SCENE_DATA_CL
+#define CLP_SCENE_DATA_CL
+
+#include "common.h"
+#include "rng.cl"
+#include "sampling.cl"
+#include "camera.cl"
+#include "traverse.cl"
+#include "materials.cl"
+#include "surface_params.cl"
+#include "lights.cl"
+
+/* Both come from the host's settings, never from a default here. */
+#if !defined(CLP_INTEGRATOR) || !defined(CLP_MAX_DEPTH)
+#error "build with -DCLP_INTEGRATOR and -DCLP_MAX_DEPTH (host/render/kernel_features.cpp build_options)"
+#endif
+
+/* Everything a path needs to know about the scene, gathered once per work-item. */
+typedef struct {
+    global const AccelNode* nodes;
+    global const TriVerts* tris;
+    global const uint* tri_material;
+    global const Material* materials;
+    global const float* normals; /* 9 floats per scene triangle (CLP_HAS_NORMALS) */
+    global const Light* lights;
+    global const AliasEntry* alias;
+    EnvMap env;
+    constant const FrameParams* fp;
+#if defined(CLP_SURFACE_PARAMS) || defined(CLP_HAS_ALPHA)
+    SurfaceData sd; /* textures, vertex attributes, material extensions (textures.cl): only where read */
+#endif
+#ifdef CLP_HAS_ALPHA
+    AlphaScene alpha;
+#endif
+} SceneData;
+
+#ifdef CLP_HAS_ALPHA
+#define CLP_SCENE_ALPHA , &sc->alpha
+#else
+#define CLP_SCENE_ALPHA
+#endif
+
+static inline int tile_to_pixel(uint i, uint width, uint height, uint* px, uint* py) {
+    uint tiles_x = (width + CLP_TILE - 1) / CLP_TILE;
+    uint tile = i / (CLP_TILE * CLP_TILE), in = i % (CLP_TILE * CLP_TILE);
+    *px = (tile % tiles_x) * CLP_TILE + in % CLP_TILE;
+    *py = (tile / tiles_x) * CLP_TILE + in / CLP_TILE;
+    return *px < width && *py < height;
+}
+
+static inline float max3(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
+
+/* Russian roulette: returns 0 to end the path, else divides the throughput by
+ * the survival probability, which keeps the estimate unbiased. */
+static inline int russian_roulette(constant const FrameParams* fp, uint depth, float3* beta, Rng* rng) {
+    float q = 1.0f;
+    if (fp->rr_rule == CLP_RR_THROUGHPUT && depth >= fp->rr_min_depth)
+        q = fmin(max3(*beta), 1.0f);
+    else if (fp->rr_rule == CLP_RR_DEPTH)
+        q = 1.0f - 1.0f / (float)(CLP_MAX_DEPTH - depth); /* the thesis renderer's rule */
+    if (q >= 1.0f) return 1;
+    if (q <= 0.0f || rng_next(rng) >= q) return 0;
+    *beta /= q;
+    return 1;
+}
+
+/* ---- surfaces ----------------------------------------------------------- */
+
+typedef struct {
+    float3 p, err; /* hit point and its rounding-error bound */
+    float3 ng;     /* geometric normal of the winding (unit) */
+    float3 ns;     /* shading normal (unit), interpolated when the mesh has normals */
+    int front;     /* the ray arrived on the front side */
+    global const TriVerts* tv;
+    global const Material* m;
+#ifdef CLP_SURFACE_PARAMS
+    Material mat; /* m with this point's textures and vertex colour applied (surface_params.cl) */
+#endif
+} Surface;
+
+#ifdef CLP_SURFACE_PARAMS
+#define surface_material(s) (&(s)->mat)
+#else
+#define surface_material(s) ((s)->m)
+#endif
+
+/* The surface a hit found, written to *out (not returned: see no_hit in traverse_leaf.cl). */
+static inline void surface_at(Surface* out, const SceneData* sc, const Hit* h, float3 d) {
+    Surface s;
+    s.tv = &sc->tris[h->tri];
+    float3 v0 = load3g(s.tv->v0), v1 = load3g(s.tv->v1), v2 = load3g(s.tv->v2);
+    s.ng = normalize3(cross(v1 - v0, v2 - v0));
+    s.front = dot(s.ng, d) < 0.0f;
+    s.p = hit_point(v0, v1, v2, h->b1, h->b2, &s.err);
+    uint mi = sc->tri_material[s.tv->prim];
+    s.m = &sc->materials[mi];
+    s.ns = s.ng;
+#ifdef CLP_HAS_NORMALS
+    if (sc->fp->scene_flags & CLP_SCENE_NORMALS) {
+    global const float* n = sc->normals + 9 * (size_t)s.tv->prim;
+    float3 ns = (1.0f - h->b1 - h->b2) * vload3(0, n) + h->b1 * vload3(1, n) + h->b2 * vload3(2, n);
+    float len = length3(ns);
+    if (len > 0.0f && isfinite(len)) s.ns = ns / len;
+    }
+#endif
+#ifdef CLP_SURFACE_PARAMS
+    surface_params(&sc->sd, s.m, mi, s.tv, h->b1, h->b2, &s.ns, &s.mat);
+#endif
+    *out = s;
+}
+
+/* Any hit between o and o + d * tmax (d need not be unit). */
+static inline int occluded(const SceneData* sc, float3 o, float3 d, float tmax, uint* rays) {
+    RayPre rp = ray_prepare(o, d);
+    ++*rays;
+    Hit h;
+    traverse_bvh(&h, sc->nodes, sc->tris, &rp, tmax, 1, 0 CLP_SCENE_ALPHA);
+    return h.tri >= 0;
+}
+
+static inline void trace_closest(Hit* h, const SceneData* sc, Ray ray, uint* rays, uint* visits) {
+    RayPre rp = ray_prepare(ray.o, ray.d);
+    ++*rays;
+    traverse_bvh(h, sc->nodes, sc->tris, &rp, INFINITY, 0, visits CLP_SCENE_ALPHA);
+}
+
+/* The scene a kernel was handed (CLP_SCENE_PARAMS, then the frame's
+ * parameters), as one struct: scene_data(CLP_SCENE_ARGS fp). */
+#define CLP_SCENE_ARG(type, name) name,
+#define CLP_SCENE_ARGS CLP_SCENE_BUFFERS(CLP_SCENE_ARG)
+static inline SceneData scene_data(CLP_SCENE_PARAMS constant const FrameParams* fp) {
+    SceneData sc;
+    sc.nodes = nodes;
+    sc.tris = tris;
+    sc.tri_material = tri_material;
+    sc.materials = materials;
+    sc.normals = normals;
+    sc.lights = lights;
+    sc.alias = alias;
+    sc.env.pixels = env_pixels;
+    sc.env.cdf = env_cdf;
+    sc.fp = fp;
+#if defined(CLP_SURFACE_PARAMS) || defined(CLP_HAS_ALPHA)
+    sc.sd.desc = tex_desc;
+    sc.sd.texels = texels;
+    sc.sd.attrs = attrs;
+    sc.sd.material_ext = material_ext;
+    sc.sd.attr_stride = fp->attr_stride;
+    sc.sd.flags = fp->scene_flags;
+#endif
+#ifdef CLP_HAS_ALPHA
+    sc.alpha.sd = sc.sd;
+    sc.alpha.tri_material = tri_material;
+#endif
+    return sc;
+}
+
+#endif
