@@ -1,67 +1,100 @@
 #!/usr/bin/env bash
-# One batch on a machine with an NVIDIA GPU, from a build folder copied there
-# (the script builds nothing): registers the NVIDIA OpenCL driver, lists
-# devices, runs every test program on the GPU, renders the default scene on
-# the GPU and on the machine's CPU through PoCL, times a longer GPU render,
-# path tracing against Embree (bench path) and the scaling and ray benchmarks.
-# Logs and images go to $OUT.
-# Usage: benchmarks/gpu/run_gpu_checks.sh BUILD_DIR
-#   (a -DCLPATH_WITH_OIIO=OFF -DCLPATH_WITH_VIEWER=OFF -DCLPATH_WITH_EMBREE=OFF build: bench rays then
-#   prints each kernel's private memory and preferred work-group multiple, without the Embree baseline)
+# The GPU check: one batch, under 8 minutes by its own timeouts, on a machine
+# with an NVIDIA GPU and a prebuilt bundle (benchmarks/gpu/build_gpu_bundle.sh
+# writes it to .gpu/: clpath, the cross-device test, the shared libraries the
+# GPU machine lacks). It builds nothing. In order:
+#   1. devices: the NVIDIA driver registered with the ICD loader, every device;
+#   2. correctness: the default scene on the GPU in both kernel shapes (their
+#      bits compared) and on the machine's CPU through PoCL; the cross-device
+#      test (equality in distribution, per pixel, GPU against PoCL, both
+#      shapes); bench rays checks every batch's hits against the CPU walk;
+#   3. speed: bench rays on bunny and room:1003542 (Mrays/s, primary / shadow /
+#      diffuse), and Msamples/s of the megakernel against the wavefront on three
+#      scenes, three runs each (the median goes in the table).
+# Logs, images and summary.txt (the table) go to $OUT.
+# Usage: benchmarks/gpu/run_gpu_checks.sh [BUNDLE_DIR]   (from the repository root)
 set -u
-B=${1:-build-gpu}
+B=${1:-.gpu}
 OUT=${OUT:-/tmp/clpath-gpu-out}
 mkdir -p "$OUT" /etc/OpenCL/vendors
-echo /usr/lib/libnvidia-opencl.so.1 > /etc/OpenCL/vendors/nvidia.icd
-export CLPATH_CACHE_DIR=/tmp/clpath-cache
+[ -e /usr/lib/libnvidia-opencl.so.1 ] && echo /usr/lib/libnvidia-opencl.so.1 >/etc/OpenCL/vendors/nvidia.icd
+export LD_LIBRARY_PATH="$B/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+export CLPATH_CACHE_DIR=/tmp/clpath-gpu-cache
+CLP="$B/clpath"
+GPU=${GPU_DEVICE:-nvidia}  # the device to check, by name (a dry run elsewhere: GPU_DEVICE=portable)
+T0=$(date +%s)
+LIMITS=0
+
+# step NAME SECONDS COMMAND...: runs COMMAND under a timeout, its output to
+# $OUT/NAME.log and the terminal, and notes its time and exit status.
+step() {
+  local name=$1 limit=$2 t rc
+  shift 2
+  LIMITS=$((LIMITS + limit))
+  echo "== $name (limit ${limit} s)"
+  t=$(date +%s%N)
+  timeout "$limit" "$@" >"$OUT/$name.log" 2>&1
+  rc=$?
+  tail -n 25 "$OUT/$name.log"
+  printf '%-28s rc=%-3s %6.1f s\n' "$name" "$rc" "$(( ($(date +%s%N) - t) / 1000000 ))e-3" >>"$OUT/steps.txt"
+}
+
+step devices 20 bash -c "date -u +%FT%TZ; nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader; \
+  \"$CLP\" devices"
+
+# Correctness. The same seed in both shapes: on one device they should agree
+# bit for bit wherever the compiler emits the same arithmetic for both.
+R="$CLP render --spp 256 -q"
+step render-gpu-mega 45 $R --device $GPU --kernel mega --seed 1 -o "$OUT/cornell-gpu-mega.pfm"
+step render-gpu-wavefront 45 $R --device $GPU --kernel wavefront --seed 1 -o "$OUT/cornell-gpu-wavefront.pfm"
+step render-pocl 45 $CLP render --spp 64 -q --device portable --seed 2 -o "$OUT/cornell-pocl.pfm"
+step compare-shapes 10 bash -c "cmp \"$OUT/cornell-gpu-mega.pfm\" \"$OUT/cornell-gpu-wavefront.pfm\" && echo 'same bits'; \
+  \"$CLP\" compare \"$OUT/cornell-gpu-wavefront.pfm\" \"$OUT/cornell-gpu-mega.pfm\"; \
+  \"$CLP\" compare \"$OUT/cornell-pocl.pfm\" \"$OUT/cornell-gpu-mega.pfm\""
+step cross-device 75 env CLPATH_DEVICE=portable CLPATH_DEVICE_B=$GPU \
+  "$B/tests/reference_agreement_test" --gtest_filter=ReferenceAgreement.CrossDevice
+
+# Traversal: the ray batches, each checked against the CPU walk.
+step rays-bunny 40 $CLP bench rays scenes/bunny.json --device $GPU --launches 10 --no-embree --csv "$OUT/rays-bunny.csv"
+step rays-room-1M 50 $CLP bench rays room:1003542 --device $GPU --launches 10 --no-embree --csv "$OUT/rays-room.csv"
+
+# Path tracing: megakernel against wavefront, three runs each, alternating.
+speed() {
+  for scene in "" scenes/bunny.json scenes/suzanne/Suzanne.gltf; do
+    for run in 1 2 3; do
+      for shape in mega wavefront; do
+        echo "scene=${scene:-default} shape=$shape run=$run $($CLP render $scene --device $GPU --kernel $shape \
+          --spp 256 -q -o /tmp/speed.pfm 2>&1 | grep -o 'msamples_per_s=[0-9.]*\|mrays_per_s=[0-9.]*' | tr '\n' ' ')"
+      done
+    done
+  done
+}
+export -f speed
+export CLP GPU
+step speed 120 bash -c speed
+
 {
-  echo "== date: $(date -u +%FT%TZ)  host: $(hostname)"
-  nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader 2>/dev/null
-  "$B/clpath" devices
-} 2>&1 | tee "$OUT/devices.txt"
-
-echo "== tests on the GPU" | tee "$OUT/gpu-tests.txt"
-for t in "$B"/tests/*_test; do
-  echo "-- $(basename "$t")"
-  CLPATH_DEVICE=nvidia timeout 300 "$t" --gtest_brief=1 2>&1 | tail -n 4
-done 2>&1 | tee -a "$OUT/gpu-tests.txt"
-
-# Equality in distribution between the GPU and PoCL (bit equality cannot hold
-# between devices: their float arithmetic and builtins differ), and the
-# hard-case suite on the GPU.
-echo "== cross-device agreement and robustness suite on the GPU" | tee "$OUT/robustness.txt"
-CLPATH_DEVICE=portable CLPATH_DEVICE_B=nvidia timeout 600 ctest --test-dir "$B" -R "ReferenceAgreement.CrossDevice" \
-  --output-on-failure 2>&1 | tail -n 30 | tee -a "$OUT/robustness.txt"
-CLPATH_DEVICE=nvidia timeout 900 ctest --test-dir "$B" -j4 --output-on-failure \
-  -R "Watertight|RayEdgeCases|Scale\.|Accumulation|LightTransportHard|DegenerateGeometry|BvhExtremes|RngSpectrum|HardScenes|ReferenceAgreement" \
-  2>&1 | tail -n 30 | tee -a "$OUT/robustness.txt"
-
-echo "== renders" | tee "$OUT/summary.txt"
-# Same scene and settings on both devices, independent seeds, for the statistical comparison.
-"$B/clpath" render --device nvidia --spp 256 --seed 1 -q -o "$OUT/cornell-gpu-256.pfm" 2>&1 | tee -a "$OUT/summary.txt"
-"$B/clpath" render --device portable --spp 256 --seed 2 -q -o "$OUT/cornell-pocl-256.pfm" 2>&1 | tee -a "$OUT/summary.txt"
-# Speed: steady state on the GPU.
-"$B/clpath" render --device nvidia --spp 4096 --seed 3 -q -o "$OUT/cornell-gpu-4096.pfm" 2>&1 | tee -a "$OUT/summary.txt"
-"$B/clpath" render --device nvidia --spp 1024 --seed 4 --rr depth --max-depth 10 -q -o /tmp/thesis-rule.pfm 2>&1 | tee -a "$OUT/summary.txt"
-
-# Path tracing on the GPU against the Embree path tracer on the machine's CPU
-# cores (same estimator; the two images are checked to agree). Needs a build
-# with Embree; a build without it says so and the batch goes on.
-echo "== bench path: GPU against Embree on the CPU" | tee "$OUT/bench-path.txt"
-for s in scenes/cornell-point.json scenes/cornell-classic.json scenes/bunny.json; do
-  timeout 600 "$B/clpath" bench path "$s" --device nvidia --width 512 --height 512 --spp 64 --max-depth 4 \
-    --rounds 3 2>&1 | tail -n 12 | tee -a "$OUT/bench-path.txt"
-done
-
-# The full scaling and ray-batch benchmarks on the GPU, results under
-# $OUT/results/<device-dir>/{scaling,rays}: copy them into
-# benchmarks/results/ and plot them where matplotlib is installed
-# (benchmarks/scaling/plot_scaling.py).
-# GPU_BENCH_DIR names the device folder (default nvidia-h100); the rays runs
-# include the scene sizes of tinybvh's published traversal figures (bunny,
-# room:1003542, room:3996202).
-echo "== scaling and ray-batch benchmarks on the GPU" | tee "$OUT/bench.txt"
-GPU_DIR=${GPU_BENCH_DIR:-nvidia-h100}
-PLOT=0 SCALING_MAX=${SCALING_MAX:-3e7} TIME_CAP=${TIME_CAP:-60} RAY_LAUNCHES=${RAY_LAUNCHES:-10} \
-  timeout 1500 benchmarks/scaling/run.sh "$GPU_DIR" nvidia "$B" 2>&1 | tail -n 60 | tee -a "$OUT/bench.txt"
-mkdir -p "$OUT/results" && cp -r "benchmarks/results/$GPU_DIR" "$OUT/results/" 2>/dev/null
+  echo "clpath GPU check, $(date -u +%F), commit $(git rev-parse --short HEAD 2>/dev/null || cat "$B/COMMIT" 2>/dev/null)"
+  grep -v '^20' "$OUT/devices.log" | head -n 1
+  echo "limits sum: ${LIMITS} s; took $(( $(date +%s) - T0 )) s"
+  echo
+  cat "$OUT/steps.txt"
+  echo
+  echo "Mrays/s on the GPU (primary / shadow / diffuse), hits checked against the CPU walk:"
+  grep -h '^primary\|^shadow\|^diffuse' "$OUT/rays-bunny.log" | sed 's/^/  bunny /'
+  grep -h '^primary\|^shadow\|^diffuse' "$OUT/rays-room-1M.log" | sed 's/^/  room:1003542 /'
+  echo
+  echo "Msamples/s, median of 3 (256 spp):"
+  python3 - "$OUT/speed.log" <<'PY'
+import re, sys, statistics
+runs = {}
+for line in open(sys.argv[1]):
+    m = re.match(r"scene=(\S+) shape=(\S+) run=\d+ msamples_per_s=([\d.]+)", line)
+    if m: runs.setdefault((m[1], m[2]), []).append(float(m[3]))
+for (scene, shape), v in sorted(runs.items()):
+    print(f"  {scene:30s} {shape:10s} {statistics.median(v):9.2f}   runs {v}")
+PY
+  echo
+  grep -h 'same bits\|differ\|rmse\|RMSE' "$OUT/compare-shapes.log" | head -n 6
+  grep -h '\[ devices \]\|PASSED\|FAILED' "$OUT/cross-device.log"
+} | tee "$OUT/summary.txt"

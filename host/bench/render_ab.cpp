@@ -11,7 +11,8 @@ namespace clpath {
 
 RenderAbResult run_render_ab(Context& ctx, const Scene& scene, const RenderAbOptions& o,
                              const std::function<void(const std::string&)>& log) {
-    if (o.variant.empty()) throw Error("bench render-ab: no variant (give --ab-kernels or --ab-options)");
+    if (o.variant.empty() && o.variant_shape == KernelShape::Auto)
+        throw Error("bench render-ab: no variant (give --ab-kernels, --ab-options or --ab-shape)");
     if (o.spp < 1) throw Error("bench render-ab: at least 1 sample per pixel");
     RenderSettings settings = settings_from_scene(scene.render);
     settings.seed = o.seed;
@@ -23,7 +24,14 @@ RenderAbResult run_render_ab(Context& ctx, const Scene& scene, const RenderAbOpt
     r.spp = o.spp;
     if (log) log("compiling and uploading for " + r.device);
     const std::shared_ptr<const PreparedScene> prepared = prepare_scene(scene, settings);
-    Renderer renderers[2] = {Renderer(ctx, *prepared, settings), Renderer(ctx, *prepared, settings, o.variant)};
+    RenderSettings variant_settings = settings;
+    if (o.variant_shape != KernelShape::Auto) {
+        variant_settings.kernel_shape = o.variant_shape;
+        settings.kernel_shape = o.variant_shape == KernelShape::Mega ? KernelShape::Wavefront : KernelShape::Mega;
+    }
+    r.builtin_shape = kernel_shape_name(resolve_kernel_shape(settings, ctx.device().is_gpu));
+    r.variant_shape = kernel_shape_name(resolve_kernel_shape(variant_settings, ctx.device().is_gpu));
+    Renderer renderers[2] = {Renderer(ctx, *prepared, settings), Renderer(ctx, *prepared, variant_settings, o.variant)};
     for (Renderer& rd : renderers) {
         rd.add_samples(1);  // warm-up: a device may finish compiling at the first launch
         rd.reset();
@@ -63,10 +71,12 @@ RenderAbResult run_render_ab(Context& ctx, const Scene& scene, const RenderAbOpt
 }
 
 std::string describe_render_ab(const RenderAbResult& r) {
-    char buf[256];
+    char buf[320];
     std::snprintf(buf, sizeof buf,
-                  "; built-in %.3f Msamples/s, variant %.3f; images differ in %zu of %zu pixels (largest difference %.3g)",
-                  r.builtin_msamples_per_s, r.variant_msamples_per_s, r.ab.differing,
+                  "; built-in (%s) %.3f Msamples/s, variant (%s) %.3f; images differ in %zu of %zu pixels (largest "
+                  "difference %.3g)",
+                  r.builtin_shape.c_str(), r.builtin_msamples_per_s, r.variant_shape.c_str(), r.variant_msamples_per_s,
+                  r.ab.differing,
                   std::size_t(r.width) * std::size_t(r.height), r.max_abs_diff);
     return "A/B: " + describe_ab_ratios(r.ab) + buf;
 }

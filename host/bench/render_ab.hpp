@@ -13,6 +13,7 @@
 #include "bench/ab_ratios.hpp"
 #include "cl/context.hpp"
 #include "cl/embedded_sources.hpp"
+#include "render/settings.hpp"
 #include "scene/scene.hpp"
 
 namespace clpath {
@@ -20,13 +21,17 @@ namespace clpath {
 struct RenderAbOptions {
     std::uint32_t spp = 16;  // launch pairs: one sample per pixel each, after one warm-up sample
     std::uint32_t seed = 0;
-    KernelVariant variant;   // must not be empty
+    KernelVariant variant;   // files replaced, options added (may be empty with variant_shape)
+    // Mega or Wavefront: the variant renders in this kernel shape and the
+    // built-in kernels in the other; Auto: both in the device's default.
+    KernelShape variant_shape = KernelShape::Auto;
 };
 
 struct RenderAbResult {
     std::string scene, device;
     int width = 0, height = 0;
     std::uint32_t spp = 0;
+    std::string builtin_shape, variant_shape;  // the kernel shape each rendered in
     double builtin_msamples_per_s = 0, variant_msamples_per_s = 0;  // over all timed launches
     AbResult ab;             // differing: pixels whose mean differs in any channel
     double max_abs_diff = 0;  // largest difference of a channel's mean

@@ -16,19 +16,21 @@ namespace clpath {
 namespace {
 
 struct RenderAbCliOptions {
-    std::string scene, device, ab_kernels, ab_options;
+    std::string scene, device, ab_kernels, ab_options, ab_shape;
     std::uint32_t spp = 16, seed = 0;
     int width = 0, height = 0;
     bool quick = false;
 };
 
 int run_render_ab_command(const RenderAbCliOptions& o) {
-    if (o.ab_kernels.empty() && o.ab_options.empty())
-        throw UsageError("bench render-ab: give the variant: --ab-kernels DIR, --ab-options OPTS or both");
+    if (o.ab_kernels.empty() && o.ab_options.empty() && o.ab_shape.empty())
+        throw UsageError("bench render-ab: give the variant: --ab-kernels DIR, --ab-options OPTS, --ab-shape SHAPE "
+                         "or several");
     RenderAbOptions ro;
     ro.spp = o.spp;
     ro.seed = o.seed;
-    ro.variant = read_kernel_variant(o.ab_kernels, o.ab_options);
+    if (!o.ab_kernels.empty() || !o.ab_options.empty()) ro.variant = read_kernel_variant(o.ab_kernels, o.ab_options);
+    if (!o.ab_shape.empty()) ro.variant_shape = parse_kernel_shape(o.ab_shape);
     Scene scene = load_scene(o.scene);
     for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
     if (o.width) scene.camera.width = o.width;
@@ -66,6 +68,10 @@ Command add_bench_render_ab_command(CLI::App& bench) {
     add_kernel_variant_options(cmd, &o->ab_kernels, &o->ab_options, "the renderer's kernels",
                                "the variant's speed over the built-in kernels' and the pixels that differ are "
                                "printed (one of the two options is needed)");
+    cmd->add_option("--ab-shape", o->ab_shape,
+                    "The variant renders in this kernel shape (mega or wavefront) and the built-in kernels in the "
+                    "other: the two shapes side by side")
+        ->check(CLI::IsMember(std::vector<std::string>{"mega", "wavefront"}));
     cmd->add_option("--spp", o->spp, "Launch pairs (one sample per pixel each)")
         ->check(whole_number(1, 1u << 16))
         ->capture_default_str();

@@ -1,5 +1,7 @@
 #include "render/settings.hpp"
 
+#include <cstdlib>
+
 #include "util/error.hpp"
 
 namespace clpath {
@@ -24,6 +26,16 @@ KernelShape resolve_kernel_shape(const RenderSettings& s, bool gpu) {
         throw Error(std::string("the wavefront kernels render the path and path-bsdf integrators; '") +
                     integrator_name(s.integrator) + "' renders one bounce, as the megakernel (--kernel mega or auto)");
     if (s.kernel_shape != KernelShape::Auto) return s.kernel_shape;
+    // A user's (or a test sweep's) standing choice, where that shape renders the integrator.
+    if (const char* env = std::getenv("CLPATH_KERNEL"); env && *env) {
+        KernelShape shape;
+        try {
+            shape = parse_kernel_shape(env);
+        } catch (const Error& e) {
+            throw Error(std::string("CLPATH_KERNEL: ") + e.what());
+        }
+        if (shape == KernelShape::Mega || (shape == KernelShape::Wavefront && light_transport)) return shape;
+    }
     return gpu && light_transport ? KernelShape::Wavefront : KernelShape::Mega;
 }
 

@@ -60,7 +60,10 @@ void validate_settings(const RenderSettings& settings);
 // the wavefront's kernels fit the register budget the megakernel cannot).
 // Only the light-transport integrators (path, path-bsdf) have a wavefront
 // shape: the one-bounce views (ao, normals, ...) run as the megakernel under
-// Auto, and asking for the wavefront with them is an error.
+// Auto, and asking for the wavefront with them is an error. Under Auto, the
+// environment variable CLPATH_KERNEL=mega|wavefront|auto replaces the
+// device's default wherever that shape renders the integrator (the test
+// suite runs its agreement tests again with CLPATH_KERNEL=wavefront).
 KernelShape resolve_kernel_shape(const RenderSettings& settings, bool gpu);
 
 // The settings a scene file asks for (its "render" block).

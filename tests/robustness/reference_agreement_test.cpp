@@ -20,7 +20,8 @@
 //
 // CrossDevice: the same test between two OpenCL devices ($CLPATH_DEVICE for
 // the first, $CLPATH_DEVICE_B for the second; without it, the same device
-// with other seeds). Bit equality cannot hold between devices; equality in
+// with other seeds), device B in both kernel shapes against device A's
+// megakernel. Bit equality cannot hold between devices; equality in
 // distribution must.
 #include <gtest/gtest.h>
 
@@ -252,11 +253,13 @@ TEST(ReferenceAgreement, CrossDevice) {
         s.camera.height = 32;
         RenderSettings st = settings_from_scene(s.render);
         st.max_depth = 6;
-        auto runs_on = [&](Context& ctx, std::uint32_t seed0) {
+        auto runs_on = [&](Context& ctx, std::uint32_t seed0, KernelShape shape) {
             std::vector<Image> out;
-            Renderer r(ctx, s, st);
+            RenderSettings ss = st;
+            ss.kernel_shape = shape;
+            Renderer r(ctx, s, ss);
             for (int i = 0; i < 16; ++i) {
-                RenderSettings si = st;
+                RenderSettings si = ss;
                 si.seed = seed0 + std::uint32_t(i);
                 r.set_settings(si);
                 r.add_samples(16);
@@ -265,9 +268,14 @@ TEST(ReferenceAgreement, CrossDevice) {
             }
             return out;
         };
-        const auto ra = runs_on(a, 10), rb = runs_on(b, 500);
-        const auto r = test::pixel_agreement(rb, test::reference_from_runs("device A", ra));
-        EXPECT_TRUE(r.ok()) << r.describe();
-        std::fprintf(stderr, "[ devices ] %s: %s\n", file, r.describe().c_str());
+        // Device B in both kernel shapes, against device A's megakernel.
+        const auto ra = runs_on(a, 10, KernelShape::Mega);
+        for (KernelShape shape : {KernelShape::Mega, KernelShape::Wavefront}) {
+            SCOPED_TRACE(kernel_shape_name(shape));
+            const auto rb = runs_on(b, shape == KernelShape::Mega ? 500 : 900, shape);
+            const auto r = test::pixel_agreement(rb, test::reference_from_runs("device A", ra));
+            EXPECT_TRUE(r.ok()) << r.describe();
+            std::fprintf(stderr, "[ devices ] %s, B %s: %s\n", file, kernel_shape_name(shape), r.describe().c_str());
+        }
     }
 }
