@@ -303,7 +303,7 @@ Command add_render_command(CLI::App& app) {
         ->check(CLI::IsMember(accel_names()))
         ->capture_default_str();
     cmd->add_option("--kernel", o->kernel,
-                    "Kernel shape: auto (the wavefront on GPUs, the megakernel on CPUs), mega (one kernel per path) "
+                    "Kernel shape: auto (the one measured faster on the device's kind: mega today), mega (one kernel per path) "
                     "or wavefront (small kernels over queues of paths; path and path-bsdf only)")
         ->check(CLI::IsMember(kernel_shape_names()))
         ->capture_default_str();
