@@ -53,7 +53,7 @@ static inline void wf_store(global float4* paths, uint capacity, uint slot, cons
     paths[CLP_WF_ROW_PREV * capacity + slot] = (float4)(ps->prev_p, 0.0f);
 }
 
-static inline PathState wf_load(global const float4* paths, uint capacity, uint slot) {
+static inline void wf_load(PathState* out, global const float4* paths, uint capacity, uint slot) {
     PathState ps;
     float4 o = paths[CLP_WF_ROW_O * capacity + slot], d = paths[CLP_WF_ROW_D * capacity + slot];
     float4 l = paths[CLP_WF_ROW_L * capacity + slot];
@@ -66,7 +66,7 @@ static inline PathState wf_load(global const float4* paths, uint capacity, uint 
     ps.prev_delta = (as_uint(l.w) >> 31) != 0u;
     ps.beta = paths[CLP_WF_ROW_BETA * capacity + slot].xyz;
     ps.prev_p = paths[CLP_WF_ROW_PREV * capacity + slot].xyz;
-    return ps;
+    *out = ps;
 }
 
 /* Adds a work-item's count to *total with one atomic per work-group. */
@@ -89,7 +89,8 @@ kernel void wf_camera(constant const FrameParams* fp, uint first, uint samples, 
         return;
     Rng rng = rng_seed(py * fp->camera.width + px, fp->first_sample + first + j, fp->seed);
     float jx = rng_next(&rng), jy = rng_next(&rng);
-    PathState ps = path_start(camera_ray(&fp->camera, px, py, jx, jy), rng);
+    PathState ps;
+    path_start(&ps, camera_ray(&fp->camera, px, py, jx, jy), rng);
     wf_store(paths, capacity, slot, &ps);
     queue[atomic_inc(&counts[CLP_WF_QUEUED])] = slot;
 }
@@ -98,7 +99,8 @@ kernel void wf_trace(CLP_SCENE_PARAMS constant const FrameParams* fp, global con
                      global const uint* queue, global const uint* counts, global float4* hits,
                      global Counters* counters) {
     local uint group_rays;
-    SceneData sc = scene_data(CLP_SCENE_ARGS fp);
+    SceneData sc;
+    scene_data(&sc, CLP_SCENE_ARGS fp);
     uint i = get_global_id(0), rays = 0;
     if (i < counts[CLP_WF_QUEUED]) {
         uint slot = queue[i];
@@ -115,11 +117,13 @@ kernel void wf_trace(CLP_SCENE_PARAMS constant const FrameParams* fp, global con
 kernel void wf_shade(CLP_SCENE_PARAMS constant const FrameParams* fp, global float4* paths, uint capacity,
                      global const uint* queue, global uint* next_queue, global uint* counts,
                      global const float4* hits, global float4* shadows) {
-    SceneData sc = scene_data(CLP_SCENE_ARGS fp);
+    SceneData sc;
+    scene_data(&sc, CLP_SCENE_ARGS fp);
     uint i = get_global_id(0);
     if (i >= counts[CLP_WF_QUEUED]) return;
     uint slot = queue[i];
-    PathState ps = wf_load(paths, capacity, slot);
+    PathState ps;
+    wf_load(&ps, paths, capacity, slot);
     float4 hv = hits[slot];
     Hit h;
     h.t = hv.x;
@@ -142,7 +146,8 @@ kernel void wf_shade(CLP_SCENE_PARAMS constant const FrameParams* fp, global flo
 kernel void wf_shadow(CLP_SCENE_PARAMS constant const FrameParams* fp, global float4* paths, uint capacity,
                       global const uint* counts, global const float4* shadows, global Counters* counters) {
     local uint group_rays;
-    SceneData sc = scene_data(CLP_SCENE_ARGS fp);
+    SceneData sc;
+    scene_data(&sc, CLP_SCENE_ARGS fp);
     uint k = get_global_id(0), rays = 0;
     if (k < counts[CLP_WF_SHADOWS]) {
         float4 o = shadows[CLP_WF_SROW_O * capacity + k], d = shadows[CLP_WF_SROW_D * capacity + k];
