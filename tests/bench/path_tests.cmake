@@ -3,9 +3,11 @@
 set(POINT_CORNELL ${CMAKE_SOURCE_DIR}/scenes/cornell-point.json)
 
 if(CLPATH_WITH_EMBREE)
-    # Both tracers at 32x32, their speeds and the agreement of their images.
+    # clpath and the Embree tracer in both modes at 32x32, their speeds (the default mode's ratio
+    # first) and the agreement of the images.
     clpath_cli_test(bench.path_quick ARGS bench path ${POINT_CORNELL} --quick --csv ${CLI_OUT}/path.csv
-                    OUTPUT "clpath/Embree: [0-9.]+ \\(Msamples/s\\), [0-9.]+ \\(Mrays/s\\).*agreement .*: agree\n")
+                    OUTPUT "clpath/Embree default mode: [0-9.]+ \\(Msamples/s\\), [0-9.]+ \\(Mrays/s\\).*\nclpath/Embree robust mode: [0-9.]+ \\(Msamples/s\\), [0-9.]+ \\(Mrays/s\\).*\nagreement with Embree default mode .*: agree\nagreement with Embree robust mode .*: agree\n")
+    set_tests_properties(cli.bench.path_quick PROPERTIES LABELS cli)
 else()
     clpath_cli_test(bench.path_without_embree FAIL ARGS bench path ${POINT_CORNELL} --quick
                     OUTPUT "clpath: error: bench path needs Embree, and this clpath was built without it")
