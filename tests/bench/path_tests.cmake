@@ -21,3 +21,17 @@ add_test(NAME cli.bench.path_unsupported_scene
                  "-DEXPECT_OUTPUT=clpath: error: .*cornell-thesis.json: bench path supports diffuse surfaces .*material 'glass' is a dielectric"
                  -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/expect.cmake)
 set_tests_properties(cli.bench.path_unsupported_scene PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 300)
+
+# clpath export --format embree writes the scene for Embree's example path tracer, which (where
+# embree-tools is installed) renders it; a scene it would render differently is refused.
+find_program(EMBREE_PATHTRACER pathtracer)
+add_test(NAME cli.export.embree_pathtracer
+         COMMAND ${CMAKE_COMMAND} -DCLPATH=$<TARGET_FILE:clpath> -DSCENE=${POINT_CORNELL} -DOUT=${CLI_OUT}/embree-export
+                 "-DPATHTRACER=${EMBREE_PATHTRACER}" -P ${CMAKE_CURRENT_SOURCE_DIR}/bench/embree_export.cmake)
+clpath_cli_test(export.embree_emitter FAIL ARGS export ${CMAKE_SOURCE_DIR}/scenes/cornell-classic.json
+                ${CLI_OUT}/embree-emitter/x.ecs --format embree
+                OUTPUT "cornell-classic.json: cannot export: material 'light' emits light" FORBID ${CLI_OUT}/embree-emitter/x.ecs)
+clpath_cli_test(export.embree_not_ecs FAIL ARGS export ${POINT_CORNELL} ${CLI_OUT}/embree-json.json --format embree
+                OUTPUT "--format embree writes an Embree command script, NAME.ecs" FORBID ${CLI_OUT}/embree-json.json)
+set_tests_properties(cli.export.embree_pathtracer cli.export.embree_emitter cli.export.embree_not_ecs
+                     PROPERTIES LABELS cli ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 300)
