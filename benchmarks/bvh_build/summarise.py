@@ -33,8 +33,9 @@ def main():
     add("# BVH build time: clpath against tinybvh's builders")
     add("")
     add(f"- Device: the host CPU (the builder runs on the host, not the OpenCL device): {meta['cpu']}, {cores} cores; "
-        f"clpath with {meta['threads']} threads; tinybvh's builders as tinybvh runs them (BuildAVX and Build are "
-        "single-threaded).")
+        f"clpath with {meta['threads']} build threads; tinybvh's builders as tinybvh runs them: BuildAVX and Build "
+        "start two threads per split in their top 5 levels for meshes of 50,000 triangles or more "
+        "(MT_BUILD_THRESHOLD), which both scenes here are; BuildHQ likewise.")
     add(f"- Date: {meta['date_start']} to {meta['date_end']}. clpath commit: {meta['commit']}. tinybvh commit: "
         f"{meta['tinybvh_commit']} (1.6.7), compiled by `benchmarks/bvh_build/tinybvh/build.sh` with `-O3 -march=native` "
         "as tinybvh's own CMake file compiles it, so BuildDefault is BuildAVX on this CPU.")
