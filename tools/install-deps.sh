@@ -12,6 +12,8 @@ fi
 # clang only recommends it, and recommends are not installed here.
 # xauth: xvfb-run (the viewer tests) needs it; xvfb only recommends it.
 # libembree-dev: the CPU baselines of clpath bench rays and bench path (optional at build time).
+# embree-tools: Embree's own example path tracer (`pathtracer`), the peer that
+# benchmarks/path_embree/pathtracer.sh times clpath and its Embree baseline against.
 # libopenmpi-dev, openmpi-bin: rendering over MPI ranks (optional at build
 # time, but the test suite checks it).
 # oclgrind: a second OpenCL implementation, a simulator that checks every kernel
@@ -32,7 +34,7 @@ packages="
     libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libgtest-dev
     xvfb xauth libimgui-dev glmark2-data
     python3-numpy python3-matplotlib python3-venv
-    libembree-dev
+    libembree-dev embree-tools
     libopenmpi-dev openmpi-bin
 "
 missing=""
