@@ -83,7 +83,9 @@ kernel void wf_camera(constant const FrameParams* fp, uint wave, global float4* 
         return;
     Rng rng = rng_seed(py * fp->camera.width + px, fp->first_sample + wave, fp->seed);
     float jx = rng_next(&rng), jy = rng_next(&rng);
-    PathState ps = path_start(camera_ray(&fp->camera, px, py, jx, jy), rng);
+    Ray ray = camera_ray(&fp->camera, px, py, jx, jy);
+    camera_lens(&fp->camera, &rng, &ray);
+    PathState ps = path_start(ray, rng);
     wf_store(paths, capacity, slot, &ps);
     queue[atomic_inc(&counts[CLP_WF_QUEUED])] = slot;
 }

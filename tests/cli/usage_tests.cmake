@@ -116,7 +116,13 @@ clpath_usage_test(tonemap_reinhard_png RC 0 ARGS render ${SMALL} --tonemap reinh
 # --- camera and environment overrides -----------------------------------------------------
 clpath_usage_test(camera_one_field RC 0 ARGS render ${SMALL} --camera fov=30 -o ${USAGE_OUT}/fov.pfm OUTPUT "summary: ")
 clpath_usage_test(camera_unknown_field RC 2 ARGS render ${SMALL} --camera zoom=2 -o ${USAGE_OUT}/cam-unknown.pfm
-                  OUTPUT "clpath: error: --camera 'zoom': unknown field \\(choose from from, to, fov, up\\)")
+                  OUTPUT "clpath: error: --camera 'zoom': unknown field \\(choose from from, to, fov, up, aperture, focus\\)")
+clpath_usage_test(camera_thin_lens RC 0 ARGS render ${SMALL} --camera aperture=0.05 -o ${USAGE_OUT}/lens.pfm
+                  OUTPUT "summary: ")
+clpath_usage_test(camera_negative_aperture RC 2 ARGS render ${SMALL} --camera aperture=-1 -o ${USAGE_OUT}/cam-ap.pfm
+                  OUTPUT "clpath: error: --camera aperture=-1: the lens radius must be a number >= 0 \\(0: a pinhole\\)")
+clpath_usage_test(camera_zero_focus RC 2 ARGS render ${SMALL} --camera focus=0 -o ${USAGE_OUT}/cam-focus.pfm
+                  OUTPUT "clpath: error: --camera focus=0: the focus distance must be a number > 0")
 clpath_usage_test(camera_bad_number RC 2 ARGS render ${SMALL} --camera from=0,nan,1 -o ${USAGE_OUT}/cam-nan.pfm
                   OUTPUT "clpath: error: --camera from=0,nan,1: 'nan' is not a finite number")
 clpath_usage_test(camera_fov_range RC 2 ARGS render ${SMALL} --camera fov=180 -o ${USAGE_OUT}/cam-fov.pfm
