@@ -129,6 +129,10 @@ clpath_usage_test(camera_fov_range RC 2 ARGS render ${SMALL} --camera fov=180 -o
                   OUTPUT "clpath: error: --camera fov=180: the vertical field of view must be a number of degrees from 1 to 179")
 clpath_usage_test(camera_no_equals RC 2 ARGS render ${SMALL} --camera 1,2,3 -o ${USAGE_OUT}/cam-no-equals.pfm
                   OUTPUT "clpath: error: --camera '1,2,3': expected NAME=VALUE")
+# A bundled CC0 HDRI (OpenEXR) as the environment of a bare mesh and of a scene file.
+clpath_usage_test(env_exr_bare_mesh RC 0 ARGS render ${CMAKE_SOURCE_DIR}/scenes/suzanne/Suzanne.gltf ${SMALL}
+                  --env ${CMAKE_SOURCE_DIR}/scenes/hdri/studio.exr -o ${USAGE_OUT}/env-exr.pfm
+                  MAKES ${USAGE_OUT}/env-exr.pfm OUTPUT "summary: ")
 clpath_usage_test(env_missing_file RC 2 ARGS render ${SMALL} --env ${USAGE_OUT}/no-sky.hdr -o ${USAGE_OUT}/env-missing.pfm
                   OUTPUT "clpath: error: --env .*no-sky\\.hdr: no such file")
 clpath_usage_test(env_negative_colour RC 2 ARGS render ${SMALL} --env -1,0,0 -o ${USAGE_OUT}/env-negative.pfm
