@@ -112,6 +112,7 @@ kernel void render_paths(CLP_SCENE_PARAMS constant const FrameParams* fp, global
             Rng rng = rng_seed(pixel, fp->first_sample + s, fp->seed);
             float jx = rng_next(&rng), jy = rng_next(&rng);
             Ray ray = camera_ray(&fp->camera, px, py, jx, jy);
+            camera_lens(&fp->camera, &rng, &ray);
             float3 L = integrate(&sc, ray, &rng, &rays);
             /* A non-finite sample would poison the pixel forever: count it, drop it. */
             if (!all(isfinite(L))) {

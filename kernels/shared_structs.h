@@ -266,18 +266,20 @@ typedef struct {
     uint pad;
 } AliasEntry;
 
-/* Pinhole camera, already turned into a ray basis by the host:
+/* Camera, already turned into a ray basis by the host:
  * direction(x_ndc, y_ndc) = forward + x_ndc * right + y_ndc * up,
- * where right and up are scaled by tan(fov/2) of their axis. */
+ * where forward is a unit vector and right and up are scaled by tan(fov/2)
+ * of their axis. A thin lens (lens_radius > 0) focuses on the plane
+ * focus_distance along forward; lens_radius 0 is a pinhole. */
 typedef struct {
     float eye[3];
     uint width;
     float forward[3];
     uint height;
     float right[3];
-    float pad0;
+    float lens_radius;    /* world units; 0: pinhole (focus_distance unused) */
     float up[3];
-    float pad1;
+    float focus_distance; /* world units along forward, > 0 with a lens */
 } CameraData;
 
 /* What one launch of the path kernel needs besides the buffers. */

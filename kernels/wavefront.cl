@@ -89,8 +89,10 @@ kernel void wf_camera(constant const FrameParams* fp, uint first, uint samples, 
         return;
     Rng rng = rng_seed(py * fp->camera.width + px, fp->first_sample + first + j, fp->seed);
     float jx = rng_next(&rng), jy = rng_next(&rng);
+    Ray ray = camera_ray(&fp->camera, px, py, jx, jy);
+    camera_lens(&fp->camera, &rng, &ray);
     PathState ps;
-    path_start(&ps, camera_ray(&fp->camera, px, py, jx, jy), rng);
+    path_start(&ps, ray, rng);
     wf_store(paths, capacity, slot, &ps);
     queue[atomic_inc(&counts[CLP_WF_QUEUED])] = slot;
 }

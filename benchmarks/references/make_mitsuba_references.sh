@@ -31,6 +31,7 @@ scenes=(
   "punctual-lights        benchmarks/references/scenes/punctual-lights.json 64 48"
   "metals                 benchmarks/references/scenes/metals.json         64 48"
   "rough-glass-sky        benchmarks/references/scenes/rough-glass-sky.json 64 48"
+  "thin-lens              benchmarks/references/scenes/thin-lens.json      64 48"
   "gltf-textured          benchmarks/references/scenes/gltf-textured.json  64 48"
   "gltf-metals            benchmarks/references/scenes/gltf-metals.json    64 48"
   "gltf-cutout            benchmarks/references/scenes/gltf-cutout.json    64 48"

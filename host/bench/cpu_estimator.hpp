@@ -41,6 +41,33 @@ inline Ray camera_ray(const CameraData& cam, std::uint32_t px, std::uint32_t py,
 }
 
 // ---- sampling (sampling.cl) ----
+// Shirley & Chiu's (1997) concentric map of [0,1)^2 to the unit disk.
+inline glm::vec2 sample_concentric_disk(float u1, float u2) {
+    const float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
+    if (a == 0.0f && b == 0.0f) return {0.0f, 0.0f};
+    float r, phi;
+    if (std::fabs(a) > std::fabs(b)) {
+        r = a;
+        phi = (kPi / 4.0f) * (b / a);
+    } else {
+        r = b;
+        phi = (kPi / 2.0f) - (kPi / 4.0f) * (a / b);
+    }
+    return {r * std::cos(phi), r * std::sin(phi)};
+}
+
+// camera.cl's thin lens: the same random numbers in the same order.
+inline void camera_lens(const CameraData& cam, Rng* rng, Ray& r) {
+    if (!(cam.lens_radius > 0.0f)) return;
+    const float u1 = rng_next(rng), u2 = rng_next(rng);
+    const glm::vec2 disk = sample_concentric_disk(u1, u2) * cam.lens_radius;
+    const glm::vec3 offset =
+        disk.x * glm::normalize(vec3_of(cam.right)) + disk.y * glm::normalize(vec3_of(cam.up));
+    const glm::vec3 focus = r.d * (cam.focus_distance / glm::dot(r.d, vec3_of(cam.forward)));
+    r.o += offset;
+    r.d = glm::normalize(focus - offset);
+}
+
 inline void make_frame(glm::vec3 n, glm::vec3& t, glm::vec3& b) {
     const float s = n.z >= 0.0f ? 1.0f : -1.0f;
     const float a = -1.0f / (s + n.z);
@@ -50,21 +77,8 @@ inline void make_frame(glm::vec3 n, glm::vec3& t, glm::vec3& b) {
 }
 
 inline glm::vec3 sample_cosine_hemisphere(float u1, float u2) {
-    const float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
-    float dx = 0, dy = 0;
-    if (a != 0.0f || b != 0.0f) {
-        float r, phi;
-        if (std::fabs(a) > std::fabs(b)) {
-            r = a;
-            phi = (kPi / 4.0f) * (b / a);
-        } else {
-            r = b;
-            phi = (kPi / 2.0f) - (kPi / 4.0f) * (a / b);
-        }
-        dx = r * std::cos(phi);
-        dy = r * std::sin(phi);
-    }
-    return {dx, dy, std::sqrt(std::max(0.0f, 1.0f - dx * dx - dy * dy))};
+    const glm::vec2 d = sample_concentric_disk(u1, u2);
+    return {d.x, d.y, std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - d.y * d.y))};
 }
 
 inline float spherical_triangle_area(glm::vec3 a, glm::vec3 b, glm::vec3 c) {

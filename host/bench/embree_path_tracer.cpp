@@ -136,7 +136,9 @@ public:
                         for (std::uint32_t k = 0; k < spp; ++k) {
                             cpu::Rng rng = cpu::rng_seed(pixel, k, seed);
                             const float jx = cpu::rng_next(&rng), jy = cpu::rng_next(&rng);
-                            vec3 L = integrate(cpu::camera_ray(camera_, px, py, jx, jy), rng, my_rays);
+                            cpu::Ray ray = cpu::camera_ray(camera_, px, py, jx, jy);
+                            cpu::camera_lens(camera_, &rng, ray);
+                            vec3 L = integrate(ray, rng, my_rays);
                             if (!std::isfinite(L.x) || !std::isfinite(L.y) || !std::isfinite(L.z)) {
                                 ++my_nonfinite;
                                 L = vec3(0.0f);

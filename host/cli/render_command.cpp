@@ -330,11 +330,13 @@ Command add_render_command(CLI::App& app) {
         ->check(CLI::IsMember(tone_map_names()))
         ->capture_default_str();
     cmd->add_option("--camera", o->camera,
-                    "Camera override, any of 'from=X,Y,Z;to=X,Y,Z;fov=DEGREES;up=X,Y,Z' (quote it: ';' is a "
-                    "shell separator)");
+                    "Camera override, any of 'from=X,Y,Z;to=X,Y,Z;fov=DEGREES;up=X,Y,Z;aperture=R;focus=D' "
+                    "(aperture: thin-lens radius, 0 a pinhole; focus: distance of the sharp plane, default the "
+                    "target's; quote it: ';' is a shell separator)");
     cmd->add_option("--env", o->env,
-                    "Environment override: a colour R,G,B (or one grey value) or an equirectangular .hdr/.exr "
-                    "image; for a bare mesh (.obj, .gltf, .glb) it replaces the default sky and sun");
+                    "Environment override: a colour R,G,B (or one grey value) or an equirectangular image "
+                    "(.exr, .hdr or any format OpenImageIO reads); for a bare mesh (.obj, .gltf, .glb) it replaces "
+                    "the default sky and sun");
     cmd->add_flag("--denoise", o->denoise,
                   "Also write each output denoised by Intel Open Image Denoise, beside it (out.png: "
                   "out.denoised.png), guided by albedo and normals passes; the estimate is unchanged");

@@ -43,12 +43,12 @@ glm::vec3 parse_vec3(const std::string& option, const std::string& field, const 
 
 Camera apply_camera_option(const std::string& text, Camera cam) {
     const std::string opt = "--camera";
-    if (text.empty()) throw UsageError(opt + " is empty; expected from=x,y,z;to=x,y,z;fov=degrees;up=x,y,z");
+    if (text.empty()) throw UsageError(opt + " is empty; expected from=x,y,z;to=x,y,z;fov=degrees;up=x,y,z;aperture=radius;focus=distance");
     for (const auto& item : split(text, ';')) {
         if (item.empty()) continue;  // a trailing ';'
         const auto eq = item.find('=');
         if (eq == std::string::npos)
-            throw UsageError(opt + " '" + item + "': expected NAME=VALUE with NAME one of from, to, fov, up");
+            throw UsageError(opt + " '" + item + "': expected NAME=VALUE with NAME one of from, to, fov, up, aperture, focus");
         const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
         if (key == "from") cam.eye = parse_vec3(opt, key, value);
         else if (key == "to") cam.target = parse_vec3(opt, key, value);
@@ -58,8 +58,18 @@ Camera apply_camera_option(const std::string& text, Camera cam) {
             if (!parse_finite(value, f) || f < 1 || f > 179)
                 throw UsageError(opt + " fov=" + value + ": the vertical field of view must be a number of degrees from 1 to 179");
             cam.vfov_degrees = f;
+        } else if (key == "aperture") {
+            float f;
+            if (!parse_finite(value, f) || f < 0)
+                throw UsageError(opt + " aperture=" + value + ": the lens radius must be a number >= 0 (0: a pinhole)");
+            cam.aperture_radius = f;
+        } else if (key == "focus") {
+            float f;
+            if (!parse_finite(value, f) || !(f > 0))
+                throw UsageError(opt + " focus=" + value + ": the focus distance must be a number > 0");
+            cam.focus_distance = f;
         } else {
-            throw UsageError(opt + " '" + key + "': unknown field (choose from from, to, fov, up)");
+            throw UsageError(opt + " '" + key + "': unknown field (choose from from, to, fov, up, aperture, focus)");
         }
     }
     try {

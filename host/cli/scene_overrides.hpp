@@ -6,7 +6,8 @@
 
 namespace clpath {
 
-// "from=x,y,z;to=x,y,z;fov=deg;up=x,y,z", any of the fields, in any order:
+// "from=x,y,z;to=x,y,z;fov=deg;up=x,y,z;aperture=radius;focus=distance", any
+// of the fields, in any order:
 // the ones given replace the camera's. Throws clpath::UsageError naming the
 // field and what it accepts.
 Camera apply_camera_option(const std::string& text, Camera camera);

@@ -133,7 +133,9 @@ Image read_image(const std::string& path) {
     auto in = OIIO::ImageInput::open(path);
     if (!in) throw Error("cannot read " + path + ": " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();
-    if (spec.nchannels < 3) throw Error(path + ": expected an RGB image, found " + std::to_string(spec.nchannels) + " channels");
+    if (spec.nchannels < 1) throw Error(path + ": the image has no channels");
+    // One channel (or grey and alpha) is a grey image: its value in R, G and B.
+    const int grey = spec.nchannels < 3 ? 1 : 0;
     std::vector<float> all(std::size_t(spec.width) * spec.height * spec.nchannels);
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
         throw Error("cannot read " + path + ": " + in->geterror());
@@ -144,7 +146,7 @@ Image read_image(const std::string& path) {
     img.rgb.resize(std::size_t(spec.width) * spec.height * 3);
     for (std::size_t i = 0; i < std::size_t(spec.width) * spec.height; ++i)
         for (int c = 0; c < 3; ++c) {
-            float v = all[i * spec.nchannels + c];
+            float v = all[i * spec.nchannels + (grey ? 0 : c)];
             img.rgb[i * 3 + c] = encoded ? srgb_decode(v) : v;
         }
     return img;

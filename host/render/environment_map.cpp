@@ -29,10 +29,17 @@ EnvironmentMap load_environment_map(const Environment& e) {
         for (std::size_t x = 0; x < w; ++x) {
             glm::vec3 c;
             for (int k = 0; k < 3; ++k) {
-                const float v = img.rgb[(y * w + x) * 3 + k];
-                if (!std::isfinite(v) || v < 0)
+                float v = img.rgb[(y * w + x) * 3 + k];
+                if (!std::isfinite(v))
                     throw Error(e.image + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                                ") is negative or not finite");
+                                ") is not finite");
+                // Lossy EXR compression (DWA, as in Blender's studio lights)
+                // and resampling filters ring slightly below zero; a radiance
+                // cannot be negative, so such texels are black.
+                if (v < 0) {
+                    v = 0;
+                    ++m.negative_values;
+                }
                 c[k] = v;
                 m.pixels[(y * w + x) * 4 + k] = v;
             }

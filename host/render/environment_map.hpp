@@ -15,10 +15,12 @@ struct EnvironmentMap {
     // sample the sphere uniformly instead (both in shared_structs.h).
     std::vector<float> cdf;
     double average_radiance = 0;   // mean luminance over the sphere (solid-angle weighted)
+    std::size_t negative_values = 0;  // channel values below 0 in the image, read as 0
 };
 
 // Reads the image (through OpenImageIO) and builds the distribution; throws
-// clpath::Error naming the file when it cannot be read or is not finite and >= 0.
+// clpath::Error naming the file when it cannot be read or a value is not
+// finite. Negative values (lossy compression's ringing) are read as 0.
 EnvironmentMap load_environment_map(const Environment& environment);
 
 }  // namespace clpath

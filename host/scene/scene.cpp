@@ -21,6 +21,10 @@ bool material_kind_in_scene_files(std::uint32_t kind) {
     return kind < CLP_MAT_KIND_COUNT && in_files[kind];
 }
 
+float Camera::resolved_focus_distance() const {
+    return focus_distance > 0.0f ? focus_distance : glm::length(target - eye);
+}
+
 CameraData camera_data(const Camera& c) {
     const glm::vec3 view = c.target - c.eye;
     if (!(glm::length(view) > 0.0f) || !std::isfinite(glm::length(view)))
@@ -29,6 +33,11 @@ CameraData camera_data(const Camera& c) {
         throw Error("camera: vertical field of view must be in (0, 180) degrees, got " +
                     std::to_string(c.vfov_degrees));
     if (c.width <= 0 || c.height <= 0) throw Error("camera: width and height must be positive");
+    if (!(c.aperture_radius >= 0.0f) || !std::isfinite(c.aperture_radius))
+        throw Error("camera: the aperture radius must be a finite number >= 0, got " + std::to_string(c.aperture_radius));
+    if (!(c.focus_distance >= 0.0f) || !std::isfinite(c.focus_distance))
+        throw Error("camera: the focus distance must be a finite number > 0 (or 0: the target's distance), got " +
+                    std::to_string(c.focus_distance));
     const glm::vec3 forward = glm::normalize(view);
     const glm::vec3 side = glm::cross(forward, c.up);
     if (!(glm::length(side) > 1e-6f * glm::length(c.up)))
@@ -44,6 +53,10 @@ CameraData camera_data(const Camera& c) {
     store3(d.up, up * ty);
     d.width = std::uint32_t(c.width);
     d.height = std::uint32_t(c.height);
+    if (c.has_lens()) {
+        d.lens_radius = c.aperture_radius;
+        d.focus_distance = c.resolved_focus_distance();
+    }
     return d;
 }
 

@@ -17,11 +17,20 @@ struct Camera {
     glm::vec3 up{0, 1, 0};
     float vfov_degrees = 45.0f;
     int width = 640, height = 480;
+    // Thin lens: the aperture's radius in world units (0: a pinhole, everything
+    // sharp) and the distance along the view direction of the plane in focus
+    // (0: the target's distance).
+    float aperture_radius = 0.0f;
+    float focus_distance = 0.0f;
+    bool has_lens() const { return aperture_radius > 0.0f; }
+    // The plane in focus: focus_distance, or the target's distance along the view.
+    float resolved_focus_distance() const;
 };
 
 // The ray basis the kernels read (kernels/camera.cl). Right is forward x up,
 // row 0 is the top of the image. Throws clpath::Error for a degenerate camera
-// (eye == target, up parallel to the view direction, fov outside (0, 180)).
+// (eye == target, up parallel to the view direction, fov outside (0, 180),
+// a negative or non-finite aperture or focus distance).
 CameraData camera_data(const Camera& camera);
 
 // A delta light, reached only through next-event estimation.

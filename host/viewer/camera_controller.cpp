@@ -25,8 +25,11 @@ void FlyCamera::reset() {
     eye_ = start_.eye;
     distance_ = glm::length(start_.target - start_.eye);
     forward_ = (start_.target - start_.eye) / distance_;
+    focus_distance_ = start_.focus_distance;
     moved_ = false;
 }
+
+void FlyCamera::set_focus_distance(float distance) { focus_distance_ = distance; }
 
 bool FlyCamera::update(const MotionInput& in, float dt, float radians_per_pixel) {
     if (in.scroll != 0) speed_ *= std::pow(kSpeedStep, in.scroll);
@@ -59,6 +62,7 @@ Camera FlyCamera::camera(int width, int height) const {
     }
     c.width = width;
     c.height = height;
+    c.focus_distance = focus_distance_;
     return c;
 }
 

@@ -30,6 +30,9 @@ public:
     // scene's camera exactly, so a still view matches 'clpath render' bit for bit.
     Camera camera(int width, int height) const;
 
+    // The thin lens's plane in focus (a click on a surface); the view is unchanged.
+    void set_focus_distance(float distance);
+
     void reset();  // back to the scene's camera (the speed is kept)
     float speed() const { return speed_; }
     bool moved() const { return moved_; }
@@ -40,6 +43,7 @@ private:
     glm::vec3 eye_, forward_;
     float distance_;  // eye to target, kept so a printed camera has the scene's scale
     float speed_;
+    float focus_distance_;  // the scene's until a click sets it
     bool moved_ = false;
 };
 

@@ -21,7 +21,11 @@ std::string vec(glm::vec3 v) {
 
 std::string camera_snippet(const Camera& c) {
     return "{\"camera\": {\"eye\": " + vec(c.eye) + ", \"target\": " + vec(c.target) + ", \"up\": " + vec(c.up) +
-           ", \"vfov\": " + number(c.vfov_degrees) + ", \"resolution\": [" + std::to_string(c.width) + ", " +
+           ", \"vfov\": " + number(c.vfov_degrees) +
+           (c.has_lens() ? ", \"aperture_radius\": " + number(c.aperture_radius) +
+                               ", \"focus_distance\": " + number(c.resolved_focus_distance())
+                         : std::string()) +
+           ", \"resolution\": [" + std::to_string(c.width) + ", " +
            std::to_string(c.height) + "]}}";
 }
 

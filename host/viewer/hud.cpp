@@ -69,6 +69,10 @@ void Hud::draw(const HudState& s) {
                 row("BVH boxes", "depth %d of %d", s.bvh_depth, s.bvh_levels);
             else
                 row("BVH boxes", "off");
+            if (s.aperture_radius > 0)
+                row("lens", "aperture %.3g, focus %.4g (click)", s.aperture_radius, s.focus_distance);
+            else
+                row("lens", "pinhole");
             row("speed", "%.3g units/s", s.speed);
             ImGui::EndTable();
         }

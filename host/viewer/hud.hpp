@@ -16,6 +16,7 @@ struct HudState {
     double ms_per_frame = 0, msamples_per_s = 0, mrays_per_s = 0;
     float exposure = 1, speed = 0;
     int bvh_depth = 0, bvh_levels = 0;  // bvh_depth 0: overlay off
+    float aperture_radius = 0, focus_distance = 0;  // aperture 0: a pinhole
 };
 
 class Hud {

@@ -41,6 +41,7 @@ const std::vector<std::pair<std::string, std::string>>& key_help() {
     static const std::vector<std::pair<std::string, std::string>> help = {
         {"W A S D / Q E", "move / down, up"},
         {"left drag", "look around"},
+        {"left click", "focus the lens on the surface there"},
         {"scroll", "movement speed"},
         {"1-7, Tab", "path, path-bsdf, ao, normals, depth, albedo, heatmap"},
         {"B, [ ]", "BVH boxes on/off, depth"},

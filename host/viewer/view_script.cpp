@@ -23,6 +23,7 @@ const std::map<std::string, Syntax>& syntax() {
         {"wait", {K::Wait, 1, false}},       {"wait-spp", {K::WaitSpp, 1, false}},
         {"key", {K::Key, 0, true}},          {"hold", {K::Hold, 1, true}},
         {"drag", {K::Drag, 2, false}},       {"scroll", {K::Scroll, 1, false}},
+        {"click", {K::Click, 2, false}},
         {"screenshot", {K::Screenshot, 0, true, true}}, {"capture", {K::Capture, 0, true}},
         {"resize", {K::Resize, 2, false}},   {"camera", {K::Camera, 0, false}},
         {"quit", {K::Quit, 0, false}},
@@ -60,6 +61,7 @@ std::vector<ScriptCommand> parse_view_script(const std::string& text, const std:
         if ((c.kind == K::Wait || c.kind == K::Hold || c.kind == K::WaitSpp) && c.a < 0)
             throw Error(where + "'" + name + "' needs a count of zero or more");
         if (c.kind == K::Resize && (c.a < 1 || c.b < 1)) throw Error(where + "window size must be positive");
+        if (c.kind == K::Click && (c.a < 0 || c.b < 0)) throw Error(where + "a click needs a window pixel (x, y >= 0)");
         out.push_back(c);
     }
     return out;

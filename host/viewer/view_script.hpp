@@ -7,6 +7,7 @@
 //   hold K N          hold key K down for N frames (movement keys)
 //   drag DX DY        one mouse drag of DX, DY window pixels (y down)
 //   scroll S          scroll S wheel steps
+//   click X Y         a left click at window pixel (X, Y) (y down): focus there
 //   screenshot [NAME] what key P does: PNG + linear EXR of the current mean;
 //                     NAME replaces the file name's stem
 //   capture FILE      write this frame's window, heads-up display included, as a
@@ -21,7 +22,7 @@
 namespace clpath::viewer {
 
 struct ScriptCommand {
-    enum class Kind { Wait, WaitSpp, Key, Hold, Drag, Scroll, Screenshot, Capture, Resize, Camera, Quit };
+    enum class Kind { Wait, WaitSpp, Key, Hold, Drag, Scroll, Click, Screenshot, Capture, Resize, Camera, Quit };
     Kind kind;
     std::string text;  // key name or file
     double a = 0, b = 0;

@@ -19,6 +19,7 @@
 #include "viewer/camera_controller.hpp"
 #include "viewer/camera_snippet.hpp"
 #include "viewer/display.hpp"
+#include "viewer/focus_pick.hpp"
 #include "viewer/frame_pacer.hpp"
 #include "viewer/hud.hpp"
 #include "viewer/keymap.hpp"
@@ -155,6 +156,7 @@ private:
         MotionInput motion{glm::vec3(0), in.drag, in.scroll};
         for (const std::string& key : in.pressed) press(key);
         for (const ScriptCommand& c : scripted.commands) run_command(c, motion, in.held);
+        if (in.click) focus_at(*in.click);
         in.held.insert(in.held.end(), scripted.held.begin(), scripted.held.end());
         for (const std::string& k : in.held) {
             motion.move += glm::vec3(k == "d" ? 1 : k == "a" ? -1 : 0, k == "e" ? 1 : k == "q" ? -1 : 0,
@@ -203,6 +205,25 @@ private:
         } catch (const Error& e) {
             set_error(e.what());
         }
+    }
+
+    // A click: the plane in focus goes through the surface under the cursor
+    // (a pinhole keeps the distance too, for the camera snippet of key C).
+    void focus_at(glm::vec2 window_pixel) {
+        const Camera& cam = renderer_->camera();
+        const auto p = window_to_image(window_pixel, window_.framebuffer_per_window_pixel(), window_.framebuffer_size(),
+                                       image_rect_, {cam.width, cam.height});
+        if (!p) return;
+        const auto d = focus_distance_at(scene_.vertices, cam, *p);
+        log_.write({{"event", "focus"}, {"frame", frame_}, {"pixel", {p->x, p->y}},
+                    {"focus_distance", d ? json(*d) : json(nullptr)}});
+        if (!d) {
+            std::fprintf(stderr, "clpath: viewer: no surface under the cursor to focus on\n");
+            return;
+        }
+        std::fprintf(stderr, "clpath: viewer: focus distance %g\n", double(*d));
+        fly_.set_focus_distance(*d);
+        camera_changed();
     }
 
     void set_integrator(std::uint32_t integrator) {
@@ -266,6 +287,7 @@ private:
                 break;
             case K::Drag: motion.drag += glm::vec2(float(c.a), float(c.b)); break;
             case K::Scroll: motion.scroll += float(c.a); break;
+            case K::Click: focus_at(glm::vec2(float(c.a), float(c.b))); break;
             case K::Screenshot: screenshot(c.text); break;
             case K::Capture: capture_path_ = c.text; break;
             case K::Resize: window_.resize(int(c.a), int(c.b)); break;
@@ -333,6 +355,7 @@ private:
 
     void draw(glm::ivec2 fb) {
         const glm::ivec4 rect = display_->draw(fb);
+        image_rect_ = rect;
         if (bvh_depth_ > 0) overlay_->draw(renderer_->camera(), rect, {1e-4f * diagonal_, 1e4f * diagonal_});
         if (hud_->visible()) hud_->draw(hud_state());
         if (!capture_path_.empty()) {
@@ -370,6 +393,9 @@ private:
         s.speed = fly_.speed();
         s.bvh_depth = bvh_depth_;
         s.bvh_levels = bvh_levels_;
+        const Camera& c = renderer_->camera();
+        s.aperture_radius = c.aperture_radius;
+        s.focus_distance = c.resolved_focus_distance();
         return s;
     }
 
@@ -386,7 +412,8 @@ private:
                     {"width", c.width},
                     {"height", c.height},
                     {"camera", {{"eye", vec_json(c.eye)}, {"target", vec_json(c.target)}, {"up", vec_json(c.up)},
-                                {"vfov", c.vfov_degrees}}},
+                                {"vfov", c.vfov_degrees}, {"aperture_radius", c.aperture_radius},
+                                {"focus_distance", c.resolved_focus_distance()}}},
                     {"frame_ms", frame_ms_},
                     {"error", error_}});
     }
@@ -427,6 +454,7 @@ private:
     std::uint32_t added_spp_ = 0;
     double frame_ms_ = 0, samples_this_frame_ = 0, rays_this_frame_ = 0, samples_rate_ = 0, rays_rate_ = 0;
     glm::ivec2 pending_size_{0};
+    glm::ivec4 image_rect_{0};  // where the last frame drew the image
     Clock::time_point pending_since_;
 };
 

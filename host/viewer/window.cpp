@@ -1,5 +1,6 @@
 #include "viewer/window.hpp"
 
+#include <algorithm>
 #include <cctype>
 
 #include "util/error.hpp"
@@ -80,9 +81,17 @@ WindowInput Window::poll(bool mouse_captured) {
     const bool down = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
     // A drag starts only outside the heads-up display, and follows the cursor from there.
     if (down && (dragging_ || !mouse_captured)) {
-        if (dragging_) in.drag = glm::vec2(cursor - last_cursor_);
+        if (dragging_) {
+            in.drag = glm::vec2(cursor - last_cursor_);
+        } else {
+            press_at_ = cursor;
+            press_travel_ = 0;
+        }
+        press_travel_ = std::max(press_travel_, glm::length(cursor - press_at_));
         dragging_ = true;
     } else {
+        // A press that ends where it began is a click, not a look around.
+        if (dragging_ && !down && press_travel_ <= kClickSlop) in.click = glm::vec2(cursor);
         dragging_ = false;
     }
     last_cursor_ = cursor;
@@ -95,6 +104,13 @@ glm::ivec2 Window::framebuffer_size() const {
     glm::ivec2 s;
     glfwGetFramebufferSize(window_, &s.x, &s.y);
     return s;
+}
+
+glm::vec2 Window::framebuffer_per_window_pixel() const {
+    int w = 0, h = 0;
+    glfwGetWindowSize(window_, &w, &h);
+    const glm::ivec2 fb = framebuffer_size();
+    return {w > 0 ? float(fb.x) / float(w) : 1.0f, h > 0 ? float(fb.y) / float(h) : 1.0f};
 }
 
 void Window::resize(int width, int height) { glfwSetWindowSize(window_, width, height); }

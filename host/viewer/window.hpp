@@ -1,6 +1,7 @@
 #pragma once
 // The GLFW window and its OpenGL 3.3 context, and the input it collects
 // between frames. Throws clpath::Error when there is no display.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,7 +17,12 @@ struct WindowInput {
     std::vector<std::string> held;     // movement keys down now
     glm::vec2 drag{0};                 // cursor movement with the left button down
     float scroll = 0;
+    // A left click (press and release with the cursor moved at most
+    // kClickSlop window pixels): where it was released, window pixels, y down.
+    std::optional<glm::vec2> click;
 };
+
+inline constexpr double kClickSlop = 3.0;
 
 class Window {
 public:
@@ -32,6 +38,7 @@ public:
     // scrolls are its, not the camera's.
     WindowInput poll(bool mouse_captured);
     glm::ivec2 framebuffer_size() const;
+    glm::vec2 framebuffer_per_window_pixel() const;  // 1 but on high-density displays
     void resize(int width, int height);
     void swap();
 
@@ -43,6 +50,8 @@ private:
     WindowInput pending_;
     glm::dvec2 last_cursor_{0};
     bool dragging_ = false;
+    glm::dvec2 press_at_{0};
+    double press_travel_ = 0;  // the farthest the cursor got from press_at_ while held
     bool mouse_captured_ = false;
 };
 

@@ -116,13 +116,23 @@ clpath_usage_test(tonemap_reinhard_png RC 0 ARGS render ${SMALL} --tonemap reinh
 # --- camera and environment overrides -----------------------------------------------------
 clpath_usage_test(camera_one_field RC 0 ARGS render ${SMALL} --camera fov=30 -o ${USAGE_OUT}/fov.pfm OUTPUT "summary: ")
 clpath_usage_test(camera_unknown_field RC 2 ARGS render ${SMALL} --camera zoom=2 -o ${USAGE_OUT}/cam-unknown.pfm
-                  OUTPUT "clpath: error: --camera 'zoom': unknown field \\(choose from from, to, fov, up\\)")
+                  OUTPUT "clpath: error: --camera 'zoom': unknown field \\(choose from from, to, fov, up, aperture, focus\\)")
+clpath_usage_test(camera_thin_lens RC 0 ARGS render ${SMALL} --camera aperture=0.05 -o ${USAGE_OUT}/lens.pfm
+                  OUTPUT "summary: ")
+clpath_usage_test(camera_negative_aperture RC 2 ARGS render ${SMALL} --camera aperture=-1 -o ${USAGE_OUT}/cam-ap.pfm
+                  OUTPUT "clpath: error: --camera aperture=-1: the lens radius must be a number >= 0 \\(0: a pinhole\\)")
+clpath_usage_test(camera_zero_focus RC 2 ARGS render ${SMALL} --camera focus=0 -o ${USAGE_OUT}/cam-focus.pfm
+                  OUTPUT "clpath: error: --camera focus=0: the focus distance must be a number > 0")
 clpath_usage_test(camera_bad_number RC 2 ARGS render ${SMALL} --camera from=0,nan,1 -o ${USAGE_OUT}/cam-nan.pfm
                   OUTPUT "clpath: error: --camera from=0,nan,1: 'nan' is not a finite number")
 clpath_usage_test(camera_fov_range RC 2 ARGS render ${SMALL} --camera fov=180 -o ${USAGE_OUT}/cam-fov.pfm
                   OUTPUT "clpath: error: --camera fov=180: the vertical field of view must be a number of degrees from 1 to 179")
 clpath_usage_test(camera_no_equals RC 2 ARGS render ${SMALL} --camera 1,2,3 -o ${USAGE_OUT}/cam-no-equals.pfm
                   OUTPUT "clpath: error: --camera '1,2,3': expected NAME=VALUE")
+# A bundled CC0 HDRI (OpenEXR) as the environment of a bare mesh and of a scene file.
+clpath_usage_test(env_exr_bare_mesh RC 0 ARGS render ${CMAKE_SOURCE_DIR}/scenes/suzanne/Suzanne.gltf ${SMALL}
+                  --env ${CMAKE_SOURCE_DIR}/scenes/hdri/studio.exr -o ${USAGE_OUT}/env-exr.pfm
+                  MAKES ${USAGE_OUT}/env-exr.pfm OUTPUT "summary: ")
 clpath_usage_test(env_missing_file RC 2 ARGS render ${SMALL} --env ${USAGE_OUT}/no-sky.hdr -o ${USAGE_OUT}/env-missing.pfm
                   OUTPUT "clpath: error: --env .*no-sky\\.hdr: no such file")
 clpath_usage_test(env_negative_colour RC 2 ARGS render ${SMALL} --env -1,0,0 -o ${USAGE_OUT}/env-negative.pfm

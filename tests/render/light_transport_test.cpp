@@ -8,6 +8,11 @@
 
 #include <gtest/gtest.h>
 
+#ifdef CLPATH_WITH_OIIO
+#include <OpenImageIO/imageio.h>
+#endif
+
+#include "render/environment_map.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/shapes.hpp"
 #include "support/analytic_scenes.hpp"
@@ -16,6 +21,7 @@
 #include "support/render_runs.hpp"
 #include "support/statistics.hpp"
 #include "support/temp_paths.hpp"
+#include "util/error.hpp"
 
 using namespace clpath;
 
@@ -273,3 +279,102 @@ TEST(LightTransport, EnvironmentImportanceSamplingAgreesWithUniform) {
     EXPECT_TRUE(r.ok()) << r.describe();
     std::filesystem::remove(s.environment.image);
 }
+
+namespace {
+// A bundled CC0 HDRI (scenes/hdri/studio.exr, 1024x512 float OpenEXR) lighting
+// the ground-and-ball scene above.
+Scene studio_scene(float rotation_degrees) {
+    Scene s;
+    s.name = "studio";
+    const auto ground = s.add_material("ground", diffuse(glm::vec3(0.6f)));
+    const auto ball = s.add_material("ball", conductor(glm::vec3(0.9f), 0.5f));
+    s.add_triangles(transformed(make_plane(), shape_transform({0, 0, 0}, {0, 0, 0}, {10, 1, 10})), ground);
+    s.add_triangles(transformed(make_icosphere(2), shape_transform({0, 0.5f, 0}, {0, 0, 0}, glm::vec3(0.5f))), ball);
+    s.environment.image = (std::filesystem::path(__FILE__).parent_path() / ".." / ".." / "scenes" / "hdri" / "studio.exr")
+                              .lexically_normal()
+                              .string();
+    s.environment.rotation_degrees = rotation_degrees;
+    s.camera.eye = {0, 1.2f, -3};
+    s.camera.target = {0, 0.4f, 0};
+    s.camera.width = 32;
+    s.camera.height = 24;
+    return s;
+}
+}  // namespace
+
+// An EXR environment is importance-sampled like any other image: the same
+// image either way. Control: the map turned by another 90 degrees differs.
+TEST(LightTransport, ExrEnvironmentImportanceSamplingAgreesWithUniform) {
+    Scene s = studio_scene(30);
+    RenderSettings st;
+    st.max_depth = 4;
+    const auto a = runs(s, st, 32, 4, 900);
+    s.environment.importance_sampled = false;
+    const auto b = runs(s, st, 128, 4, 1000);
+    const auto r = test::image_agreement(a, b);
+    EXPECT_TRUE(r.ok()) << r.describe();
+    Scene turned = studio_scene(120);
+    const auto c = runs(turned, st, 32, 4, 1100);
+    EXPECT_FALSE(test::image_agreement(c, b).ok()) << "control: the map turned by 90 degrees";
+}
+
+// Slightly negative texels (lossy EXR compression rings below zero: studio.exr
+// has -3e-6) read as black; a NaN is refused, naming the pixel.
+TEST(LightTransport, EnvironmentNegativeTexelsAreBlackAndNanIsRefused) {
+    Image img;
+    img.width = 2;
+    img.height = 1;
+    img.rgb = {-0.001f, 0.5f, 1.0f, 2.0f, 2.0f, 2.0f};
+    Environment env;
+    env.image = test::temp_path("negative-sky.pfm");
+    write_pfm(env.image, img);
+    const EnvironmentMap m = load_environment_map(env);
+    EXPECT_EQ(m.negative_values, 1u);
+    EXPECT_EQ(m.pixels[0], 0.0f);
+    EXPECT_EQ(m.pixels[1], 0.5f);
+    img.rgb[4] = NAN;
+    write_pfm(env.image, img);
+    try {
+        load_environment_map(env);
+        ADD_FAILURE() << "a NaN texel was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("pixel (1, 0) is not finite"), std::string::npos) << e.what();
+    }
+    std::filesystem::remove(env.image);
+}
+
+#ifdef CLPATH_WITH_OIIO
+namespace {
+// Writes float channels as an OpenEXR file (float, not half: exact values).
+void write_float_exr(const std::string& path, int w, int h, int channels, const std::vector<float>& v) {
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out) << OIIO::geterror();
+    const OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::FLOAT);
+    ASSERT_TRUE(out->open(path, spec)) << out->geterror();
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, v.data())) << out->geterror();
+    out->close();
+}
+}  // namespace
+
+// An EXR environment builds the same map and distribution, bit for bit, as
+// the same floats in a PFM; a one-channel EXR is grey.
+TEST(LightTransport, ExrEnvironmentIsTheSameMapAsThePfm) {
+    Environment pfm, exr, grey;
+    pfm.image = write_sky("same-sky.pfm");
+    const Image img = read_image(pfm.image);
+    exr.image = test::temp_path("same-sky.exr");
+    write_float_exr(exr.image, img.width, img.height, 3, img.rgb);
+    const EnvironmentMap a = load_environment_map(pfm), b = load_environment_map(exr);
+    EXPECT_EQ(a.width, 32);
+    EXPECT_EQ(b.pixels, a.pixels);
+    EXPECT_EQ(b.cdf, a.cdf);
+    std::vector<float> g(img.rgb.size() / 3);
+    for (std::size_t i = 0; i < g.size(); ++i) g[i] = img.rgb[3 * i + 1];
+    grey.image = test::temp_path("grey-sky.exr");
+    write_float_exr(grey.image, img.width, img.height, 1, g);
+    const EnvironmentMap c = load_environment_map(grey);
+    for (std::size_t i = 0; i < g.size(); ++i)
+        for (int k = 0; k < 3; ++k) ASSERT_EQ(c.pixels[4 * i + std::size_t(k)], g[i]) << "texel " << i;
+    for (const auto& f : {pfm.image, exr.image, grey.image}) std::filesystem::remove(f);
+}
+#endif

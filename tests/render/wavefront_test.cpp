@@ -83,6 +83,23 @@ TEST(Wavefront, SameBitsAsTheMegakernelOnEveryBundledScene) {
     EXPECT_LE(black * 4, renders) << "black images agree whatever the kernels do";
 }
 
+// A thin lens draws its two numbers after the pixel jitter in both shapes.
+TEST(Wavefront, SameBitsWithAThinLens) {
+    const Scene s = small((repo_root() / "benchmarks" / "references" / "scenes" / "thin-lens.json").string());
+    ASSERT_TRUE(s.camera.has_lens());
+    for (std::uint32_t integrator : test::kLightTransportIntegrators) {
+        SCOPED_TRACE(integrator_name(integrator));
+        RenderSettings st = settings_from_scene(s.render);
+        st.integrator = integrator;
+        st.seed = 5;
+        const Rendered mega = render_shape(s, st, KernelShape::Mega, 3);
+        const Rendered wave = render_shape(s, st, KernelShape::Wavefront, 3);
+        EXPECT_GT(test::nonzero(mega.image), 0u);
+        EXPECT_EQ(wave.image.rgb, mega.image.rgb);
+        EXPECT_EQ(wave.stats.rays, mega.stats.rays);
+    }
+}
+
 // The control: the comparison sees a one-sample difference.
 TEST(Wavefront, AnotherSampleCountDiffers) {
     const Scene s = test::small_cornell(24, 16);

@@ -335,6 +335,7 @@ TEST(Gltf, CamerasByDefaultNameAndIndex) {
     expect_near(s.camera.eye, {0.5f, 0.5f, 3});
     expect_near(s.camera.target, {0.5f, 0.5f, 2});
     EXPECT_NEAR(s.camera.vfov_degrees, 57.29578f, 1e-3f);
+    EXPECT_FALSE(s.camera.has_lens()) << "glTF has no thin lens: a pinhole unless --camera gives an aperture";
     for (const char* pick : {"tall", "1"}) {
         LoadOptions o = f.opts();
         o.gltf_camera = pick;

@@ -96,6 +96,21 @@ TEST(MitsubaExport, CornellThesisMaterialsDepthAndCamera) {
     }
 }
 
+TEST(MitsubaExport, ThinLensIsMitsubasThinlensSensor) {
+    Scene s = load_scene(repo_file("benchmarks/references/scenes/thin-lens.json"));
+    const json lens = parse(export_mitsuba_scene(s, "l", "test")).doc["scene"]["sensor"];
+    EXPECT_EQ(lens["type"], "thinlens");
+    EXPECT_NEAR(lens["aperture_radius"].get<double>(), 0.12, 1e-7);
+    EXPECT_NEAR(lens["focus_distance"].get<double>(), 4.0, 1e-7);
+    s.camera.focus_distance = 0;  // the target's distance
+    const json target = parse(export_mitsuba_scene(s, "l", "test")).doc["scene"]["sensor"];
+    EXPECT_NEAR(target["focus_distance"].get<double>(), std::sqrt(0.4 * 0.4 + 4 * 4), 1e-6);
+    s.camera.aperture_radius = 0;
+    const json pinhole = parse(export_mitsuba_scene(s, "l", "test")).doc["scene"]["sensor"];
+    EXPECT_EQ(pinhole["type"], "perspective");
+    EXPECT_FALSE(pinhole.contains("aperture_radius"));
+}
+
 TEST(MitsubaExport, EveryLightKindAndRoughGlass) {
     Scene s = load_scene(repo_file("benchmarks/references/scenes/punctual-lights.json"));
     const json lights = parse(export_mitsuba_scene(s, "p", "test")).doc["scene"];

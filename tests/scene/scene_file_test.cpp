@@ -280,6 +280,20 @@ TEST(SceneFileBad, WrongTypes) {
     EXPECT_EQ(parse_error(scene_with(R"({"type": 3})")), "scenes/s.json: objects[0].type: expected a string, got number");
 }
 
+TEST(SceneFile, CameraTakesAThinLens) {
+    const std::string objects = R"(, "materials": {"x": {"type": "diffuse"}}, "objects": [{"type": "plane", "material": "x"}]})";
+    const Scene s = parse(R"({"camera": {"eye": [0,0,-1], "target": [0,0,0], "aperture_radius": 0.05, "focus_distance": 3})" +
+                          objects);
+    EXPECT_FLOAT_EQ(s.camera.aperture_radius, 0.05f);
+    EXPECT_FLOAT_EQ(s.camera.focus_distance, 3.0f);
+    const Scene pinhole = parse(R"({"camera": {"eye": [0,0,-1], "target": [0,0,0]})" + objects);
+    EXPECT_FALSE(pinhole.camera.has_lens());
+    EXPECT_EQ(parse_error(R"({"camera": {"eye": [0,0,-1], "target": [0,0,0], "aperture_radius": -1})" + objects),
+              "scenes/s.json: camera.aperture_radius: -1 is out of range (must be >= 0)");
+    EXPECT_EQ(parse_error(R"({"camera": {"eye": [0,0,-1], "target": [0,0,0], "focus_distance": 0})" + objects),
+              "scenes/s.json: camera.focus_distance: 0 is out of range (must be > 0)");
+}
+
 TEST(SceneFileBad, OutOfRangeValues) {
     auto material = [](const std::string& m) {
         return parse_error(R"({"camera": {"eye": [0,0,-1], "target": [0,0,0]}, "materials": {"x": )" + m +

@@ -47,6 +47,16 @@ TEST(ViewerScript, ParsesEveryCommandWithComments) {
     EXPECT_EQ(cmds[11].kind, K::Quit);
 }
 
+TEST(ViewerScript, ClickTakesAWindowPixel) {
+    const auto cmds = parse_view_script("click 12 30.5\n", "s.txt");
+    ASSERT_EQ(cmds.size(), 1u);
+    EXPECT_EQ(cmds[0].kind, K::Click);
+    EXPECT_EQ(cmds[0].a, 12);
+    EXPECT_EQ(cmds[0].b, 30.5);
+    EXPECT_NE(error_of("click 3\n").find("s.txt:1: 'click' needs 2 number(s)"), std::string::npos);
+    EXPECT_NE(error_of("click -1 4\n").find("s.txt:1: a click needs a window pixel"), std::string::npos);
+}
+
 TEST(ViewerScript, ErrorsNameTheLine) {
     EXPECT_NE(error_of("wait 1\njump\n").find("s.txt:2: unknown command 'jump'"), std::string::npos);
     EXPECT_NE(error_of("key\n").find("s.txt:1: 'key' needs an argument"), std::string::npos);

@@ -1,8 +1,11 @@
-// The viewer's small pure pieces: BVH box levels, frame pacing, letterboxing.
+// The viewer's small pure pieces: BVH box levels, frame pacing, letterboxing,
+// click to focus.
 #include <gtest/gtest.h>
 
 #include "bvh/bvh.hpp"
+#include "scene/shapes.hpp"
 #include "viewer/bvh_boxes.hpp"
+#include "viewer/focus_pick.hpp"
 #include "viewer/frame_pacer.hpp"
 #include "viewer/letterbox.hpp"
 
@@ -96,4 +99,61 @@ TEST(ViewerLetterbox, KeepsAspectAndCentres) {
     EXPECT_EQ(letterbox({64, 48}, {128, 48}), glm::ivec4(32, 0, 64, 48));
     EXPECT_EQ(letterbox({64, 48}, {128, 192}), glm::ivec4(0, 48, 128, 96));
     EXPECT_EQ(letterbox({64, 48}, {0, 10}), glm::ivec4(0));
+}
+
+namespace {
+
+// A wall facing the camera at z = 5 and a box in front of it, near the
+// image's left edge (image right is -x: forward x up).
+std::vector<glm::vec3> focus_scene() {
+    auto tris = transformed(make_plane(), shape_transform({0, 0, 5}, {glm::radians(-90.0f), 0, 0}, {20, 1, 20}));
+    const auto box = transformed(make_box(), shape_transform({1.5f, 0, 2}, {0, 0, 0}, glm::vec3(1)));
+    tris.insert(tris.end(), box.begin(), box.end());
+    return tris;
+}
+
+Camera focus_camera() {
+    Camera c;
+    c.eye = {0, 0, 0};
+    c.target = {0, 0, 1};
+    c.vfov_degrees = 60;
+    c.width = 80;
+    c.height = 40;
+    return c;
+}
+
+}  // namespace
+
+TEST(ViewerFocus, DistanceAlongTheViewOfTheSurfaceUnderThePixel) {
+    const auto tris = focus_scene();
+    const Camera c = focus_camera();
+    // The centre sees the wall straight ahead.
+    EXPECT_NEAR(*focus_distance_at(tris, c, {40, 20}), 5.0f, 1e-5f);
+    // Off-centre the wall is farther along the ray but as far along the view.
+    EXPECT_NEAR(*focus_distance_at(tris, c, {70, 5}), 5.0f, 1e-5f);
+    // Near the left edge the box's front face, z = 1.5, is nearer.
+    EXPECT_NEAR(*focus_distance_at(tris, c, {5, 20}), 1.5f, 1e-5f);
+    // Turned away from everything: no surface.
+    Camera back = c;
+    back.target = {0, 0, -1};
+    EXPECT_FALSE(focus_distance_at(tris, back, {40, 20}).has_value());
+}
+
+TEST(ViewerFocus, WindowPixelsMapThroughTheLetterbox) {
+    // A 100x50 image in a 200x200 framebuffer: 200x100, centred, rows 50..150.
+    const glm::ivec4 rect = letterbox({100, 50}, {200, 200});
+    const auto p = window_to_image({100, 100}, {1, 1}, {200, 200}, rect, {100, 50});
+    ASSERT_TRUE(p.has_value());
+    EXPECT_FLOAT_EQ(p->x, 50.0f);
+    EXPECT_FLOAT_EQ(p->y, 25.0f);
+    const auto corner = window_to_image({0.5f, 50.5f}, {1, 1}, {200, 200}, rect, {100, 50});
+    ASSERT_TRUE(corner.has_value());
+    EXPECT_FLOAT_EQ(corner->x, 0.25f);
+    EXPECT_FLOAT_EQ(corner->y, 0.25f);
+    // The bars above and below are not the image.
+    EXPECT_FALSE(window_to_image({100, 20}, {1, 1}, {200, 200}, rect, {100, 50}).has_value());
+    // A framebuffer of two pixels per window pixel.
+    const auto hi = window_to_image({50, 50}, {2, 2}, {200, 200}, rect, {100, 50});
+    ASSERT_TRUE(hi.has_value());
+    EXPECT_FLOAT_EQ(hi->x, 50.0f);
 }

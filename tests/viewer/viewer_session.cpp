@@ -134,6 +134,63 @@ TEST(Session, RefinesEveryFrameAndACameraMoveRestartsTheMean) {
     EXPECT_EQ(snippet["camera"]["resolution"], json::array({kWidth, kHeight}));
 }
 
+// A click focuses the thin lens on the surface under the cursor: the near
+// ball, then the ball at the target; a click on the sky changes nothing.
+TEST(Session, ClickFocusesTheLensThere) {
+    const std::string dir = test_dir();
+    fs::path root = fs::current_path();
+    while (!root.empty() && !fs::exists(root / "benchmarks/references/scenes/thin-lens.json") && root != root.parent_path())
+        root = root.parent_path();
+    const std::string scene = (root / "benchmarks/references/scenes/thin-lens.json").string();
+    ASSERT_TRUE(fs::exists(scene)) << scene;
+    // Window pixels of a 64x48 view: the near (red) ball is right of centre
+    // and low (image right is world -x), the focused ball at the centre, the
+    // sky along the top left.
+    const Session s = view(dir,
+                           "wait-spp 2\n"
+                           "click 50 32\n"
+                           "wait 2\n"
+                           "click 32 24\n"
+                           "wait 2\n"
+                           "click 16 1\n"
+                           "wait 2\n"
+                           "camera\n"
+                           "quit\n",
+                           scene);
+    ASSERT_EQ(s.result.exit_code, 0) << s.result.output;
+    std::vector<json> focus;
+    for (const auto& l : s.log)
+        if (l.value("event", "") == "focus") focus.push_back(l);
+    ASSERT_EQ(focus.size(), 3u) << s.result.output;
+    // Distances along the view: the red ball's centre 2.23 (radius 0.35), the
+    // green one's 4.02 (radius 0.4).
+    const double near_ball = focus[0]["focus_distance"].get<double>();
+    const double target_ball = focus[1]["focus_distance"].get<double>();
+    EXPECT_GT(near_ball, 2.23 - 0.36);
+    EXPECT_LT(near_ball, 2.23);
+    EXPECT_GT(target_ball, 4.02 - 0.41);
+    EXPECT_LT(target_ball, 4.02);
+    EXPECT_TRUE(focus[2]["focus_distance"].is_null()) << "the sky has no surface";
+    // Each focus restarted the mean and the frames after it carry the distance.
+    const auto f = s.frames();
+    const double scene_focus = f.front()["camera"]["focus_distance"].get<double>();
+    EXPECT_DOUBLE_EQ(scene_focus, 4.0);
+    EXPECT_FLOAT_EQ(f.back()["camera"]["focus_distance"].get<float>(), float(target_ball));
+    int restarts = 0;
+    for (std::size_t i = 1; i < f.size(); ++i)
+        if (f[i]["camera"] != f[i - 1]["camera"]) {
+            ++restarts;
+            EXPECT_EQ(f[i]["spp"], f[i]["added_spp"]) << "frame " << i << ": the focus changed but the mean kept older samples";
+        }
+    EXPECT_EQ(restarts, 2);
+    // The printed snippet carries the lens, so a render sees what the window showed.
+    const auto at = s.result.output.find("{\"camera\": ");
+    ASSERT_NE(at, std::string::npos) << s.result.output;
+    const json snippet = json::parse(s.result.output.substr(at, s.result.output.find('\n', at) - at));
+    EXPECT_FLOAT_EQ(snippet["camera"]["aperture_radius"].get<float>(), 0.12f);
+    EXPECT_FLOAT_EQ(snippet["camera"]["focus_distance"].get<float>(), float(target_ball));
+}
+
 TEST(Session, KeysSwitchTheViewAndExposure) {
     const std::string dir = test_dir();
     const Session s = view(dir,

@@ -247,6 +247,11 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
 
     const Camera& c = scene.camera;
     const SceneRenderDefaults& r = scene.render;
+    // A thin lens is Mitsuba's thinlens sensor: the same disk of that radius
+    // about the eye, focused on the plane at that distance along the view.
+    const std::string lens = c.has_lens() ? "\"aperture_radius\": " + num(c.aperture_radius) +
+                                                ", \"focus_distance\": " + num(c.resolved_focus_distance()) + ", "
+                                          : std::string();
     // clpath's max_depth counts scattering events, Mitsuba's path segments:
     // depth d in clpath ends with the segment d + 1.
     const std::string head =
@@ -256,7 +261,8 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
         ", \"shift\": " + jpos(-shift) + ", \"notes\": [" + notes + "]},\n  \"scene\": {\n    \"type\": \"scene\",\n" +
         "    \"integrator\": {\"type\": \"" + (cutouts ? "volpath" : "path") + "\", \"max_depth\": " + std::to_string(r.max_depth + 1) +
         ", \"hide_emitters\": false},\n" +
-        "    \"sensor\": {\"type\": \"perspective\", \"fov\": " + num(c.vfov_degrees) +
+        "    \"sensor\": {\"type\": \"" + (c.has_lens() ? "thinlens" : "perspective") + "\", " + lens +
+        "\"fov\": " + num(c.vfov_degrees) +
         ", \"fov_axis\": \"y\", \"near_clip\": " + num(1e-6 * diag) + ", \"far_clip\": " + num(1e3 * diag) +
         ", \"clpath_look_at\": {\"origin\": " + jpos(at(c.eye)) + ", \"target\": " + jpos(at(c.target)) +
         ", \"up\": " + jvec(c.up) + "},\n      \"film\": {\"type\": \"hdrfilm\", \"width\": " + std::to_string(c.width) +

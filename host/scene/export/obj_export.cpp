@@ -124,7 +124,11 @@ ObjExport export_obj_scene(const Scene& scene, const std::string& stem, const st
                            ": the mesh and its MTL materials (Kd reflectance, Ke radiance, one-sided), with the "
                            "camera, the render settings and the two-sided emitters here.") +
                ",\n  \"camera\": { \"eye\": " + json_vec(c.eye) + ", \"target\": " + json_vec(c.target) +
-               ", \"up\": " + json_vec(c.up) + ", \"vfov\": " + num(c.vfov_degrees) + ", \"resolution\": [" +
+               ", \"up\": " + json_vec(c.up) + ", \"vfov\": " + num(c.vfov_degrees) +
+               (c.has_lens() ? ", \"aperture_radius\": " + num(c.aperture_radius) +
+                                   ", \"focus_distance\": " + num(c.resolved_focus_distance())
+                             : std::string()) +
+               ", \"resolution\": [" +
                std::to_string(c.width) + ", " + std::to_string(c.height) + "] },\n  \"render\": { \"spp\": " +
                std::to_string(r.spp) + ", \"max_depth\": " + std::to_string(r.max_depth) +
                ", \"russian_roulette\": " + jsonf::quote(r.russian_roulette) + ", \"integrator\": " +

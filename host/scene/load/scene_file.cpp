@@ -56,6 +56,8 @@ void read_camera(Object o, Camera& cam) {
     cam.target = o.require("target").vec3();
     if (auto v = o.get("up")) cam.up = v->vec3();
     if (auto v = o.get("vfov")) cam.vfov_degrees = v->real(kFov);
+    if (auto v = o.get("aperture_radius")) cam.aperture_radius = v->real(jsonf::kNonNegative);
+    if (auto v = o.get("focus_distance")) cam.focus_distance = v->real(jsonf::kPositive);
     if (auto v = o.get("resolution")) {
         const auto a = v->array();
         if (a.size() != 2) v->fail("expected [width, height]");
