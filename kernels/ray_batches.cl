@@ -86,7 +86,7 @@ kernel void batch_trace_closest(global const AccelNode* nodes, global const TriV
     global const BatchRay* r = &rays[i];
     RayPre rp = ray_prepare(load3g(r->o), load3g(r->d));
     Hit h;
-    traverse_bvh(&h, nodes, tris, &rp, r->tmax, 0, 0);
+    accel_closest_hit(&h, nodes, tris, &rp, r->tmax, 0);
     hits[i] = h;
 }
 
@@ -97,7 +97,7 @@ kernel void batch_trace_any(global const AccelNode* nodes, global const TriVerts
     global const BatchRay* r = &rays[i];
     RayPre rp = ray_prepare(load3g(r->o), load3g(r->d));
     Hit h;
-    traverse_bvh(&h, nodes, tris, &rp, r->tmax, 1, 0);
+    accel_any_hit(&h, nodes, tris, &rp, r->tmax, 0);
     occluder[i] = h.tri;
 }
 
