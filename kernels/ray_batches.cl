@@ -1,6 +1,7 @@
 /* The ray-batch benchmark (clpath bench rays, host/bench/ray_batches.cpp):
  * kernels that make the rays (not timed) and kernels that trace a batch
- * (timed), one ray per work-item, through the same traverse_bvh() the
+ * (timed), one ray per work-item, through the same walks (accel_closest_hit,
+ * accel_any_hit: traverse.cl) the
  * integrator uses (the BVH, or the flat list with -DCLP_ACCEL_FLAT). */
 #ifndef CLP_RAY_BATCHES_CL
 #define CLP_RAY_BATCHES_CL

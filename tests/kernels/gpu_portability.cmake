@@ -7,7 +7,7 @@
 # missing) where its target's tools are not installed, never passed without
 # compiling. One test per target, so ctest spreads them; results are cached in
 # the build folder per source, options, target and tools.
-file(GLOB_RECURSE CLPATH_BUNDLED_SCENES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/scenes/*.json)
+file(GLOB_RECURSE CLPATH_BUNDLED_SCENES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/scenes/*.json ${CMAKE_SOURCE_DIR}/scenes/*.gltf)
 set(GPU_COMPILE_CACHE ${CMAKE_BINARY_DIR}/gpu-compile-cache)
 foreach(target sm_90 gfx90a gfx1100)
     add_test(NAME gpu_portability.${target}
