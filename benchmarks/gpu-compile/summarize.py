@@ -136,6 +136,15 @@ def main():
         ("the most stack of any program", lambda rows, k, t: largest(rows, k, t, "stack_bytes"), "render_paths"),
         ("film resolve", prog("path-all"), "film_resolve"),
     ])
+    over = re.findall(r"clpath: over budget: ([^\n]*)", log)
+    out("## Over budget\n\n")
+    if over:
+        out(f"{len(over)} kernel figures over their sm_90 budget (`clpath kernels --check` fails on each):\n\n")
+        for line in over:
+            out(f"- {line}\n")
+    else:
+        out("None: every budgeted kernel is within its sm_90 budget.\n")
+    out("\n")
     out("## Every program\n\n")
     for name, rows in (("now", after),) + ((a.before_label, before),) if before else (("now", after),):
         programs = {r["program"] for r in rows}
