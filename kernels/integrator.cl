@@ -23,7 +23,8 @@
 /* The path's bounces, one after another (path.cl); the shadow ray of each is
  * traced before the next bounce, so contributions add in the path's order. */
 CLP_GPU_INLINE float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* rays) {
-    PathState ps = path_start(ray, *rng);
+    PathState ps;
+    path_start(&ps, ray, *rng);
     for (;;) {
         Hit h;
         trace_closest(&h, sc, ps.ray, rays, 0);
@@ -98,7 +99,8 @@ kernel void render_paths(CLP_SCENE_PARAMS constant const FrameParams* fp, global
     if (get_local_id(0) == 0) group_rays = group_nonfinite = 0;
     barrier(CLK_LOCAL_MEM_FENCE);
 
-    SceneData sc = scene_data(CLP_SCENE_ARGS fp);
+    SceneData sc;
+    scene_data(&sc, CLP_SCENE_ARGS fp);
 
     uint rays = 0, nonfinite = 0, px, py;
     uint gid = get_global_id(0);

@@ -37,17 +37,15 @@ typedef struct {
 } ShadowRay;
 
 /* A path leaving the camera along ray, its random stream after the jitter. */
-static inline PathState path_start(Ray ray, Rng rng) {
-    PathState ps;
-    ps.ray = ray;
-    ps.L = (float3)(0.0f);
-    ps.beta = (float3)(1.0f);
-    ps.prev_p = ray.o;
-    ps.prev_pdf = 0.0f;
-    ps.prev_delta = 1; /* a camera ray: what it sees directly is never light-sampled */
-    ps.depth = 0;
-    ps.rng = rng;
-    return ps;
+static inline void path_start(PathState* ps, Ray ray, Rng rng) {
+    ps->ray = ray;
+    ps->L = (float3)(0.0f);
+    ps->beta = (float3)(1.0f);
+    ps->prev_p = ray.o;
+    ps->prev_pdf = 0.0f;
+    ps->prev_delta = 1; /* a camera ray: what it sees directly is never light-sampled */
+    ps->depth = 0;
+    ps->rng = rng;
 }
 
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH

@@ -130,10 +130,12 @@ static inline void trace_closest(Hit* h, const SceneData* sc, Ray ray, uint* ray
 }
 
 /* The scene a kernel was handed (CLP_SCENE_PARAMS, then the frame's
- * parameters), as one struct: scene_data(CLP_SCENE_ARGS fp). */
+ * parameters), as one struct: scene_data(&sc, CLP_SCENE_ARGS fp). Filled
+ * through a pointer, as every struct here (traverse_leaf.cl: Oclgrind cannot
+ * run the inlined struct returns). */
 #define CLP_SCENE_ARG(type, name) name,
 #define CLP_SCENE_ARGS CLP_SCENE_BUFFERS(CLP_SCENE_ARG)
-static inline SceneData scene_data(CLP_SCENE_PARAMS constant const FrameParams* fp) {
+static inline void scene_data(SceneData* out, CLP_SCENE_PARAMS constant const FrameParams* fp) {
     SceneData sc;
     sc.nodes = nodes;
     sc.tris = tris;
@@ -157,7 +159,7 @@ static inline SceneData scene_data(CLP_SCENE_PARAMS constant const FrameParams* 
     sc.alpha.sd = sc.sd;
     sc.alpha.tri_material = tri_material;
 #endif
-    return sc;
+    *out = sc;
 }
 
 #endif

@@ -221,12 +221,12 @@ CLP_WALK CLP_WALK_RESULT occlude_tree(CLP_WALK_OUT global const Bvh4Node128* nod
 
 static inline void accel_closest_hit(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
                                      const RayPre* r, float tmax, uint* visits CLP_ALPHA_PARAM) {
-    CLP_WALK_INTO(hit, traverse_tree, nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
+    CLP_WALK_ASSIGN(hit) traverse_tree(CLP_WALK_OUT_ARG(hit) nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
 }
 
 static inline void accel_any_hit(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
                                  const RayPre* r, float tmax, uint* visits CLP_ALPHA_PARAM) {
-    CLP_WALK_INTO(hit, occlude_tree, nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
+    CLP_WALK_ASSIGN(hit) occlude_tree(CLP_WALK_OUT_ARG(hit) nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
 }
 
 #endif

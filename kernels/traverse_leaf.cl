@@ -48,7 +48,8 @@ static inline void no_hit(Hit* hit, float tmax) {
 
 /* How a walk (CLP_WALK, common.h) hands back its hit:
  *   CLP_WALK CLP_WALK_RESULT walk(CLP_WALK_OUT args...) { ... CLP_WALK_RETURN(hit); }
- *   CLP_WALK_INTO(&hit, walk, args...);
+ *   CLP_WALK_ASSIGN(&hit) walk(CLP_WALK_OUT_ARG(&hit) args...);
+ * (not one variadic macro: NVIDIA's OpenCL C compiler refuses variadic macros, as OpenCL C 1.2 allows)
  * On a CPU it returns it: PoCL keeps the walk out of line, and returned in
  * registers the hit made bunny's primary rays 1.1x faster than written
  * through a pointer (bench rays --ab-kernels, paired). On a GPU the walk is
@@ -65,12 +66,14 @@ static inline void no_hit(Hit* hit, float tmax) {
         *walk_out = (h);                                                        \
         return;                                                                 \
     } while (0)
-#define CLP_WALK_INTO(out, walk, ...) walk(out, __VA_ARGS__)
+#define CLP_WALK_ASSIGN(out)
+#define CLP_WALK_OUT_ARG(out) out,
 #else
 #define CLP_WALK_RESULT Hit
 #define CLP_WALK_OUT
 #define CLP_WALK_RETURN(h) return (h)
-#define CLP_WALK_INTO(out, walk, ...) (*(out) = walk(__VA_ARGS__))
+#define CLP_WALK_ASSIGN(out) *(out) =
+#define CLP_WALK_OUT_ARG(out)
 #endif
 
 

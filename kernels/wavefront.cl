@@ -3,7 +3,7 @@
  * kernels that each do one thing to every live path, so that each needs few
  * registers and the paths doing the same thing run together.
  *
- *   wf_camera      a path per pixel of the band, for one sample index
+ *   wf_camera      a path per pixel of the band and sample of the wave
  *   wf_trace       closest hit of each queued path's ray
  *   wf_shade       one bounce (path_step, path.cl): queues the paths that go
  *                  on and the shadow rays of next-event estimation
@@ -11,14 +11,17 @@
  *   wf_next_bounce the queue just filled becomes the one to trace
  *   wf_accumulate  each path's radiance joins its pixel's sum
  *
- * A wave is one sample of every pixel of a band; waves run in sample order
- * and wf_accumulate adds a path's radiance after all its bounces, so every
- * pixel's sum takes the same values in the same order as in render_paths: the
- * same bits wherever the compiled arithmetic is the same.
+ * A wave is one or more consecutive samples of every pixel of a band (as many
+ * as the path state holds: fewer, longer launches); waves run in sample
+ * order and wf_accumulate adds a wave's radiance after all its bounces, each
+ * pixel's samples in order, so every pixel's sum takes the same values in the
+ * same order as in render_paths: the same bits wherever the compiled
+ * arithmetic is the same.
  *
  * Path state lives in structure-of-arrays float4 rows: paths[row * capacity +
  * slot] (rows below), so each kernel reads the 16-byte rows it needs,
- * coalesced. A band's slot is its tiled pixel index (gid of render_paths).
+ * coalesced. A path's slot is j * pixel_count + its pixel's tiled index in
+ * the band (gid of render_paths), for the wave's j-th sample.
  * Queues hold slots; their lengths are counts[CLP_WF_*]. */
 #ifndef CLP_WAVEFRONT_CL
 #define CLP_WAVEFRONT_CL
@@ -50,7 +53,7 @@ static inline void wf_store(global float4* paths, uint capacity, uint slot, cons
     paths[CLP_WF_ROW_PREV * capacity + slot] = (float4)(ps->prev_p, 0.0f);
 }
 
-static inline PathState wf_load(global const float4* paths, uint capacity, uint slot) {
+static inline void wf_load(PathState* out, global const float4* paths, uint capacity, uint slot) {
     PathState ps;
     float4 o = paths[CLP_WF_ROW_O * capacity + slot], d = paths[CLP_WF_ROW_D * capacity + slot];
     float4 l = paths[CLP_WF_ROW_L * capacity + slot];
@@ -63,7 +66,7 @@ static inline PathState wf_load(global const float4* paths, uint capacity, uint 
     ps.prev_delta = (as_uint(l.w) >> 31) != 0u;
     ps.beta = paths[CLP_WF_ROW_BETA * capacity + slot].xyz;
     ps.prev_p = paths[CLP_WF_ROW_PREV * capacity + slot].xyz;
-    return ps;
+    *out = ps;
 }
 
 /* Adds a work-item's count to *total with one atomic per work-group. */
@@ -75,15 +78,19 @@ static inline void wf_count(local uint* group, uint n, global uint* total) {
     if (get_local_id(0) == 0 && *group) atomic_add(total, *group);
 }
 
-kernel void wf_camera(constant const FrameParams* fp, uint wave, global float4* paths, uint capacity,
-                      global uint* queue, global uint* counts) {
+kernel void wf_camera(constant const FrameParams* fp, uint first, uint samples, global float4* paths,
+                      uint capacity, global uint* queue, global uint* counts) {
+    /* Path slot = j * pixel_count + the pixel's slot in the band: sample
+     * first + j of that pixel. */
     uint slot = get_global_id(0), px, py;
-    if (slot >= fp->pixel_count ||
-        !tile_to_pixel(fp->pixel_offset + slot, fp->camera.width, fp->camera.height, &px, &py))
+    if (slot >= fp->pixel_count * samples) return;
+    uint j = slot / fp->pixel_count;
+    if (!tile_to_pixel(fp->pixel_offset + slot - j * fp->pixel_count, fp->camera.width, fp->camera.height, &px, &py))
         return;
-    Rng rng = rng_seed(py * fp->camera.width + px, fp->first_sample + wave, fp->seed);
+    Rng rng = rng_seed(py * fp->camera.width + px, fp->first_sample + first + j, fp->seed);
     float jx = rng_next(&rng), jy = rng_next(&rng);
-    PathState ps = path_start(camera_ray(&fp->camera, px, py, jx, jy), rng);
+    PathState ps;
+    path_start(&ps, camera_ray(&fp->camera, px, py, jx, jy), rng);
     wf_store(paths, capacity, slot, &ps);
     queue[atomic_inc(&counts[CLP_WF_QUEUED])] = slot;
 }
@@ -92,7 +99,8 @@ kernel void wf_trace(CLP_SCENE_PARAMS constant const FrameParams* fp, global con
                      global const uint* queue, global const uint* counts, global float4* hits,
                      global Counters* counters) {
     local uint group_rays;
-    SceneData sc = scene_data(CLP_SCENE_ARGS fp);
+    SceneData sc;
+    scene_data(&sc, CLP_SCENE_ARGS fp);
     uint i = get_global_id(0), rays = 0;
     if (i < counts[CLP_WF_QUEUED]) {
         uint slot = queue[i];
@@ -109,11 +117,13 @@ kernel void wf_trace(CLP_SCENE_PARAMS constant const FrameParams* fp, global con
 kernel void wf_shade(CLP_SCENE_PARAMS constant const FrameParams* fp, global float4* paths, uint capacity,
                      global const uint* queue, global uint* next_queue, global uint* counts,
                      global const float4* hits, global float4* shadows) {
-    SceneData sc = scene_data(CLP_SCENE_ARGS fp);
+    SceneData sc;
+    scene_data(&sc, CLP_SCENE_ARGS fp);
     uint i = get_global_id(0);
     if (i >= counts[CLP_WF_QUEUED]) return;
     uint slot = queue[i];
-    PathState ps = wf_load(paths, capacity, slot);
+    PathState ps;
+    wf_load(&ps, paths, capacity, slot);
     float4 hv = hits[slot];
     Hit h;
     h.t = hv.x;
@@ -136,7 +146,8 @@ kernel void wf_shade(CLP_SCENE_PARAMS constant const FrameParams* fp, global flo
 kernel void wf_shadow(CLP_SCENE_PARAMS constant const FrameParams* fp, global float4* paths, uint capacity,
                       global const uint* counts, global const float4* shadows, global Counters* counters) {
     local uint group_rays;
-    SceneData sc = scene_data(CLP_SCENE_ARGS fp);
+    SceneData sc;
+    scene_data(&sc, CLP_SCENE_ARGS fp);
     uint k = get_global_id(0), rays = 0;
     if (k < counts[CLP_WF_SHADOWS]) {
         float4 o = shadows[CLP_WF_SROW_O * capacity + k], d = shadows[CLP_WF_SROW_D * capacity + k];
@@ -169,20 +180,24 @@ kernel void wf_next_bounce(global uint* counts) {
 }
 
 /* The wave's radiance joins each pixel's compensated sum, as render_paths adds a sample. */
-kernel void wf_accumulate(constant const FrameParams* fp, global const float4* paths, uint capacity,
+/* The wave's radiance joins each pixel's compensated sum, its samples in
+ * order, as render_paths adds them. */
+kernel void wf_accumulate(constant const FrameParams* fp, uint samples, global const float4* paths, uint capacity,
                           global AccumPixel* accum, global Counters* counters) {
     local uint group_nonfinite;
     uint slot = get_global_id(0), px, py, nonfinite = 0;
     if (slot < fp->pixel_count &&
         tile_to_pixel(fp->pixel_offset + slot, fp->camera.width, fp->camera.height, &px, &py)) {
         uint pixel = py * fp->camera.width + px;
-        float3 L = paths[CLP_WF_ROW_L * capacity + slot].xyz;
-        if (!all(isfinite(L))) {
-            ++nonfinite;
-            L = (float3)(0.0f);
-        }
         float3 sum = load3g(accum[pixel].sum), comp = load3g(accum[pixel].comp);
-        kahan_add(&sum, &comp, L);
+        for (uint j = 0; j < samples; ++j) {
+            float3 L = paths[CLP_WF_ROW_L * capacity + j * fp->pixel_count + slot].xyz;
+            if (!all(isfinite(L))) {
+                ++nonfinite;
+                L = (float3)(0.0f);
+            }
+            kahan_add(&sum, &comp, L);
+        }
         accum[pixel].sum[0] = sum.x;
         accum[pixel].sum[1] = sum.y;
         accum[pixel].sum[2] = sum.z;

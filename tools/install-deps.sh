@@ -1,5 +1,6 @@
 #!/bin/sh
-# Installs everything clpath needs to build, test and benchmark, from Debian packages only.
+# Installs everything clpath needs to build, test and benchmark: Debian packages,
+# and Intel Open Image Denoise from PyPI (Debian 12 does not package it).
 # Run as root on Debian 12. Safe to run again: apt skips what is already there.
 set -eu
 export DEBIAN_FRONTEND=noninteractive
@@ -11,6 +12,8 @@ fi
 # clang only recommends it, and recommends are not installed here.
 # xauth: xvfb-run (the viewer tests) needs it; xvfb only recommends it.
 # libembree-dev: the CPU baselines of clpath bench rays and bench path (optional at build time).
+# embree-tools: Embree's own example path tracer (`pathtracer`), the peer that
+# benchmarks/path_embree/pathtracer.sh times clpath and its Embree baseline against.
 # libopenmpi-dev, openmpi-bin: rendering over MPI ranks (optional at build
 # time, but the test suite checks it).
 # oclgrind: a second OpenCL implementation, a simulator that checks every kernel
@@ -22,6 +25,7 @@ fi
 # Debian's libclc-15 would replace libclc-14, so libclc 14's bitcode serves
 # both). NVIDIA's ptxas comes with the CUDA toolkit, not Debian: where
 # /usr/local/cuda/bin/ptxas is missing the gate skips sm_90 and says so.
+# python3-venv: the virtual environment that holds Open Image Denoise (below).
 packages="
     build-essential cmake pkg-config clang libclang-rt-14-dev
     clang-14 llvm-14 libclc-14 clang-15 llvm-15
@@ -29,8 +33,8 @@ packages="
     libglm-dev libglfw3-dev libopenimageio-dev openimageio-tools
     libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libgtest-dev
     xvfb xauth libimgui-dev glmark2-data
-    python3-numpy python3-matplotlib
-    libembree-dev
+    python3-numpy python3-matplotlib python3-venv
+    libembree-dev embree-tools
     libopenmpi-dev openmpi-bin
 "
 missing=""
@@ -43,3 +47,18 @@ if [ -n "$missing" ]; then
     apt-get install -y -qq --no-install-recommends $missing >/dev/null
 fi
 echo "install-deps.sh: all packages present"
+
+# Intel Open Image Denoise 2 for render --denoise and the viewer's denoise key:
+# the pyoidn wheel ships libOpenImageDenoise.so.2 with its CPU device (and
+# TBB), which clpath loads at run time from this virtual environment
+# (CLPATH_OIDN_VENV in CMakeLists.txt; host/denoise/oidn_library.cpp).
+# clpath builds and runs without it; --denoise then says what is missing.
+oidn_venv=/opt/clpath-oidn
+oidn_version=2.5.1.0
+if ! "$oidn_venv/bin/python" -c "import importlib.metadata as m; assert m.version('pyoidn') == '$oidn_version'" 2>/dev/null; then
+    rm -rf "$oidn_venv"
+    python3 -m venv "$oidn_venv"
+    # --no-deps: only the wheel's shared libraries are used, not its Python binding (nor numpy).
+    "$oidn_venv/bin/pip" install --quiet --no-deps "pyoidn==$oidn_version"
+fi
+echo "install-deps.sh: Open Image Denoise (pyoidn $oidn_version) in $oidn_venv"

@@ -15,5 +15,10 @@ cp build-gpu/tests/reference_agreement_test .gpu/tests/
 for bin in .gpu/clpath .gpu/tests/reference_agreement_test; do
   ldd "$bin" | awk '$3 ~ /^\// {print $3}'
 done | sort -u | grep -v -E '/(libc|libm|libstdc\+\+|libgcc_s|libOpenCL|ld-linux[^/]*)\.so' | xargs -r cp -L -t .gpu/lib/
+# The bunny scene reads Debian's glmark2-data copy of the mesh, which the GPU
+# machine lacks: the mesh travels, and the scene file is rewritten to it.
+mkdir -p .gpu/scenes
+cp /usr/share/glmark2/models/bunny.obj .gpu/scenes/
+sed 's#/usr/share/glmark2/models/bunny.obj#bunny.obj#' scenes/bunny.json >.gpu/scenes/bunny.json
 git rev-parse --short HEAD >.gpu/COMMIT
 du -sh .gpu

@@ -9,7 +9,8 @@
 # (seconds, the flat structure's cap, default 60), RAY_LAUNCHES (default 5),
 # ROOM_SIZES (closed-room sizes for the ray batches, default "1003542 3996202"),
 # PLOT=0 to skip the plots (a machine without matplotlib; plot later with
-# benchmarks/scaling/plot_scaling.py).
+# benchmarks/scaling/plot_scaling.py), SCALING=0 to run the ray batches only
+# (the scaling folder is left as it is), NOTE (a line on the machine's state for the rays README).
 set -euo pipefail
 DIR=${1:?usage: run.sh DEVICE_DIR [DEVICE_SPEC] [BUILD_DIR]}
 SPEC=${2:-}
@@ -38,12 +39,15 @@ header() {
 
 # --- scaling ---------------------------------------------------------------------
 start=$(date +%s)
+if [ "${SCALING:-1}" != 0 ]; then
 "$CLPATH" bench scaling "${DEV[@]}" --max "$MAX" --time-cap "$CAP" \
   --csv "$OUT/scaling/scaling.csv" --md "$OUT/scaling/scaling.md" 2>&1 | tee "$OUT/scaling/log.txt"
+fi
 scaling_s=$(( $(date +%s) - start ))
 
 # --- ray batches -----------------------------------------------------------------
 start=$(date +%s)
+load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 : > "$OUT/rays/log.txt"
 rays() {  # name, then clpath bench rays arguments
   local name=$1; shift
@@ -63,11 +67,11 @@ rays_s=$(( $(date +%s) - start ))
 { head -n 1 "$OUT"/rays/cornell-bvh.csv; for f in "$OUT"/rays/*.csv; do [ "$(basename "$f")" = all.csv ] || tail -n +2 "$f"; done; } > "$OUT/rays/all.csv.tmp"
 mv "$OUT/rays/all.csv.tmp" "$OUT/rays/all.csv"
 
-if [ "${PLOT:-1}" != 0 ]; then
+if [ "${PLOT:-1}" != 0 ] && [ "${SCALING:-1}" != 0 ]; then
   "${PYTHON:-/usr/bin/python3}" "$ROOT/benchmarks/scaling/plot_scaling.py" "$OUT/scaling/scaling.csv" "$OUT/scaling"
 fi
 
-{
+[ "${SCALING:-1}" != 0 ] && {
   echo "# Scaling benchmark: \`clpath bench scaling\`"
   echo
   header
@@ -91,10 +95,13 @@ fi
   echo "  to the point light from the primary hits (any hit), diffuse (cosine) from the primary hits (closest hit);"
   echo "  one warm-up + $LAUNCHES timed launches, kernel time from OpenCL profiling events, Mrays/s from the mean."
   echo "- secondary batches hold one ray per primary hit (misses make none)."
+  echo "- Embree 3 traces every batch on the same cores in the same run, twice: in its default mode (as its users run"
+  echo "  it; its ratio first) and in its robust mode (\`RTC_SCENE_FLAG_ROBUST\`, watertight like clpath: like for like)."
+  echo "- load average before and after: $load_before / $(cut -d' ' -f1-3 /proc/loadavg).${NOTE:+ $NOTE}"
   echo "- $rays_s s in all. Full output: log.txt; every run: all.csv."
   echo
-  echo "| scene | triangles | structure | batch | rays | hits | Mrays/s (mean) | CPU check: rays | identical % | ties | at the origin | mismatched | Embree Mrays/s | clpath/Embree | Embree mismatched |"
-  echo "|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
-  tail -n +2 "$OUT/rays/all.csv" | awk -F, '{printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $2, $3, $4, $5, $9, $10, $14, $15, $16, $17, $18, $19, $22, $23, $24}'
+  echo "| scene | triangles | structure | batch | rays | hits | Mrays/s (mean) | CPU check: rays | identical % | ties | at the origin | mismatched | Embree default Mrays/s | **clpath/Embree default** | Embree robust Mrays/s | clpath/Embree robust | Embree mismatched (default, robust) |"
+  echo "|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+  tail -n +2 "$OUT/rays/all.csv" | awk -F, '{printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | **%s** | %s | %s | %s, %s |\n", $2, $3, $4, $5, $9, $10, $14, $15, $16, $17, $18, $19, $22, $23, $26, $27, $24, $28}'
 } > "$OUT/rays/README.md"
 echo "run.sh: wrote $OUT/scaling and $OUT/rays"

@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <limits>
 
 #include <glm/glm.hpp>
 
@@ -90,8 +92,8 @@ inline glm::vec3 sample_spherical_triangle(glm::vec3 a, glm::vec3 b, glm::vec3 c
 }
 
 // ---- surfaces (intersect.cl) ----
-inline glm::vec3 hit_point(glm::vec3 v0, glm::vec3 v1, glm::vec3 v2, float b1, float b2, glm::vec3& err) {
-    const glm::vec3 e1 = v1 - v0, e2 = v2 - v0;
+// e1 = v1 - v0, e2 = v2 - v0, as the kernel computes them (a caller may keep them per triangle).
+inline glm::vec3 hit_point_edges(glm::vec3 v0, glm::vec3 e1, glm::vec3 e2, float b1, float b2, glm::vec3& err) {
     const glm::vec3 b1e1 = b1 * e1, b2e2 = b2 * e2;
     const glm::vec3 s = b1e1 + b2e2;
     const glm::vec3 p = v0 + s;
@@ -100,9 +102,24 @@ inline glm::vec3 hit_point(glm::vec3 v0, glm::vec3 v1, glm::vec3 v2, float b1, f
     err = gamma_bound(6) * (glm::abs(b1e1) + glm::abs(b2e2)) + (1.0f + gamma_bound(4)) * glm::abs(rounding);
     return p;
 }
+inline glm::vec3 hit_point(glm::vec3 v0, glm::vec3 v1, glm::vec3 v2, float b1, float b2, glm::vec3& err) {
+    return hit_point_edges(v0, v1 - v0, v2 - v0, b1, b2, err);
+}
 
+// std::nextafter(x, +-INFINITY) without the library call (a path tracer
+// offsets two ray origins per bounce): one step of the float's bit pattern,
+// from zero to the smallest denormal of that sign; infinities and NaN stay.
+inline float next_float_up(float x) {
+    if (!(x < INFINITY)) return x;
+    if (x == 0.0f) return std::numeric_limits<float>::denorm_min();
+    std::uint32_t b;
+    std::memcpy(&b, &x, 4);
+    b = x > 0.0f ? b + 1 : b - 1;
+    std::memcpy(&x, &b, 4);
+    return x;
+}
 inline float next_float_away(float x, float dir_sign) {
-    return dir_sign > 0.0f ? std::nextafter(x, INFINITY) : (dir_sign < 0.0f ? std::nextafter(x, -INFINITY) : x);
+    return dir_sign > 0.0f ? next_float_up(x) : (dir_sign < 0.0f ? -next_float_up(-x) : x);
 }
 
 inline glm::vec3 offset_ray_origin(glm::vec3 p, glm::vec3 err, glm::vec3 n, glm::vec3 w) {
@@ -121,26 +138,29 @@ struct Frame {
 };
 
 // The shading normal turned to wo's side of the geometric normal (reflective kinds).
-inline Frame scatter_frame(glm::vec3 ng, glm::vec3 ns, glm::vec3 wo) {
+inline glm::vec3 scatter_normal(glm::vec3 ng, glm::vec3 ns, glm::vec3 wo) {
     const float s = glm::dot(wo, ng) >= 0.0f ? 1.0f : -1.0f;
     ng *= s;
     ns *= s;
-    if (glm::dot(ns, ng) < 0.0f) ns = ng;
+    return glm::dot(ns, ng) < 0.0f ? ng : ns;
+}
+inline Frame scatter_frame(glm::vec3 ng, glm::vec3 ns, glm::vec3 wo) {
     Frame f;
-    f.n = ns;
-    make_frame(ns, f.t, f.b);
+    f.n = scatter_normal(ng, ns, wo);
+    make_frame(f.n, f.t, f.b);
     return f;
 }
 
-// Lambert's f |cos theta_i| and the cosine-weighted pdf of wi.
+// Lambert's f |cos theta_i| and the cosine-weighted pdf of wi. Only the
+// frame's normal is needed: the local z of a vector is its dot with it.
 inline glm::vec3 diffuse_eval(glm::vec3 albedo, glm::vec3 ng, glm::vec3 ns, glm::vec3 wo_w, glm::vec3 wi_w, float& pdf) {
     pdf = 0.0f;
-    const Frame f = scatter_frame(ng, ns, wo_w);
-    const glm::vec3 wo = f.to_local(wo_w), wi = f.to_local(wi_w);
+    const glm::vec3 n = scatter_normal(ng, ns, wo_w);
+    const float wo_z = glm::dot(wo_w, n), wi_z = glm::dot(wi_w, n);
     if (glm::dot(wi_w, ng) * glm::dot(wo_w, ng) <= 0.0f) return glm::vec3(0.0f);
-    if (wo.z <= 0.0f || wi.z <= 0.0f) return glm::vec3(0.0f);
-    pdf = wi.z * kInvPi;
-    return albedo * (wi.z * kInvPi);
+    if (wo_z <= 0.0f || wi_z <= 0.0f) return glm::vec3(0.0f);
+    pdf = wi_z * kInvPi;
+    return albedo * (wi_z * kInvPi);
 }
 
 // A cosine-weighted direction (world) and its pdf; the weight f cos / pdf is the albedo.

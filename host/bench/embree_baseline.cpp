@@ -22,7 +22,7 @@ namespace clpath {
 
 bool embree_built_in() { return false; }
 
-std::unique_ptr<EmbreeBaseline> make_embree_baseline(const std::vector<glm::vec3>&, int) { return nullptr; }
+std::unique_ptr<EmbreeBaseline> make_embree_baseline(const std::vector<glm::vec3>&, EmbreeMode, int) { return nullptr; }
 
 #else
 
@@ -40,7 +40,7 @@ void init_ray(RTCRay& r, const BatchRay& b) {
 
 class Baseline final : public EmbreeBaseline {
 public:
-    Baseline(const std::vector<glm::vec3>& vertices, int threads) : embree_(vertices, threads) {}
+    Baseline(const std::vector<glm::vec3>& vertices, int threads, EmbreeMode mode) : embree_(vertices, threads, mode) {}
 
     EmbreeTiming closest(const std::vector<BatchRay>& rays, int passes, std::vector<std::int64_t>& prim,
                          std::vector<float>& t) override {
@@ -78,10 +78,12 @@ public:
 
     std::string describe() const override {
         char buf[200];
-        std::snprintf(buf, sizeof buf, "Embree %s, robust triangles, high-quality BVH, %d thread%s, built in %.0f ms",
-                      RTC_VERSION_STRING, embree_.threads(), embree_.threads() == 1 ? "" : "s", embree_.build_ms());
+        std::snprintf(buf, sizeof buf, "Embree %s, %s, high-quality BVH, %d thread%s, built in %.0f ms",
+                      RTC_VERSION_STRING, describe_embree_mode(embree_.mode()).c_str(), embree_.threads(),
+                      embree_.threads() == 1 ? "" : "s", embree_.build_ms());
         return buf;
     }
+    EmbreeMode mode() const override { return embree_.mode(); }
 
 private:
     EmbreeScene embree_;
@@ -123,8 +125,9 @@ private:
 
 }  // namespace
 
-std::unique_ptr<EmbreeBaseline> make_embree_baseline(const std::vector<glm::vec3>& vertices, int threads) {
-    return std::make_unique<Baseline>(vertices, threads);
+std::unique_ptr<EmbreeBaseline> make_embree_baseline(const std::vector<glm::vec3>& vertices, EmbreeMode mode,
+                                                     int threads) {
+    return std::make_unique<Baseline>(vertices, threads, mode);
 }
 
 #endif

@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "bench/embree_scene.hpp"
 #include "shared_structs.h"
 
 namespace clpath {
@@ -29,16 +30,19 @@ public:
                                  std::vector<float>& t) = 0;
     // Whether anything lies on each ray in [0, tmax].
     virtual EmbreeTiming any(const std::vector<BatchRay>& rays, int passes, std::vector<char>& occluded) = 0;
-    // "Embree 3.13.5, robust triangles, high-quality BVH, 2 threads, built in 812 ms"
+    // "Embree 3.13.5, default mode (no RTC_SCENE_FLAG_ROBUST), high-quality BVH, 2 threads, built in 812 ms"
     virtual std::string describe() const = 0;
+    virtual EmbreeMode mode() const = 0;
 };
 
 // Whether this program was built with Embree.
 bool embree_built_in();
 
-// Embree's scene over vertices (three per triangle, in the scene's order),
-// traced by `threads` threads (0: every hardware thread). nullptr when built
-// without Embree; throws clpath::Error when Embree reports an error.
-std::unique_ptr<EmbreeBaseline> make_embree_baseline(const std::vector<glm::vec3>& vertices, int threads = 0);
+// Embree's scene over vertices (three per triangle, in the scene's order) in
+// the given mode, traced by `threads` threads (0: every hardware thread).
+// nullptr when built without Embree; throws clpath::Error when Embree
+// reports an error.
+std::unique_ptr<EmbreeBaseline> make_embree_baseline(const std::vector<glm::vec3>& vertices, EmbreeMode mode,
+                                                     int threads = 0);
 
 }  // namespace clpath

@@ -63,9 +63,9 @@ std::vector<std::string> embree_path_unsupported(const Scene& scene) {
 
 bool embree_path_built_in() { return false; }
 
-std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene&, std::uint32_t, int) { return nullptr; }
+std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene&, std::uint32_t, EmbreeMode, int) { return nullptr; }
 std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene&, std::shared_ptr<const PreparedScene>,
-                                                          std::uint32_t, int) {
+                                                          std::uint32_t, EmbreeMode, int) {
     return nullptr;
 }
 
@@ -82,7 +82,8 @@ constexpr int kTile = 16;  // pixels per side of the tiles the threads take in t
 
 class Tracer final : public EmbreePathTracer {
 public:
-    Tracer(const Scene& scene, std::shared_ptr<const PreparedScene> prepared, std::uint32_t max_depth, int threads)
+    Tracer(const Scene& scene, std::shared_ptr<const PreparedScene> prepared, std::uint32_t max_depth, EmbreeMode mode,
+           int threads)
         : max_depth_(max_depth), prepared_(std::move(prepared)) {
         const auto why = embree_path_unsupported(scene);
         if (!why.empty()) {
@@ -98,8 +99,19 @@ public:
         camera_ = camera_data(scene.camera);
         width_ = scene.camera.width;
         height_ = scene.camera.height;
-        vertices_ = scene.vertices;
-        embree_ = std::make_unique<EmbreeScene>(vertices_, threads);
+        // What a hit reads of its triangle, in one record: computed once
+        // here, as Embree's own renderers keep their meshes' data at hand.
+        tris_.resize(scene.triangle_count());
+        for (std::size_t t = 0; t < tris_.size(); ++t) {
+            const vec3 v0 = scene.vertices[3 * t], v1 = scene.vertices[3 * t + 1], v2 = scene.vertices[3 * t + 2];
+            TriangleRecord& r = tris_[t];
+            r.v0 = v0;
+            r.e1 = v1 - v0;
+            r.e2 = v2 - v0;
+            r.ng = glm::normalize(glm::cross(v1 - v0, v2 - v0));
+            r.material = &prepared_->materials[prepared_->triangle_material[t]];
+        }
+        embree_ = std::make_unique<EmbreeScene>(scene.vertices, threads, mode);
     }
 
     EmbreePathRun render(std::uint32_t spp, std::uint32_t seed) override {
@@ -161,10 +173,11 @@ public:
     }
 
     std::string describe() const override {
-        return std::string("Embree ") + RTC_VERSION_STRING + ", " + std::to_string(embree_->threads()) + " thread" +
-               (embree_->threads() == 1 ? "" : "s") + " on " + cpu_model_name() +
-               ", rtcIntersect1/rtcOccluded1 single rays, robust high-quality BVH";
+        return std::string("Embree ") + RTC_VERSION_STRING + ", " + describe_embree_mode(embree_->mode()) + ", " +
+               std::to_string(embree_->threads()) + " thread" + (embree_->threads() == 1 ? "" : "s") + " on " +
+               cpu_model_name() + ", rtcIntersect1/rtcOccluded1 single rays, high-quality BVH";
     }
+    EmbreeMode mode() const override { return embree_->mode(); }
 
 private:
     struct Hit {
@@ -173,10 +186,11 @@ private:
         std::uint32_t prim = 0;
     };
 
+    // r.d is a unit vector (camera rays and BSDF samples are normalised).
     Hit closest(const cpu::Ray& r, std::uint64_t& rays) const {
         ++rays;
         RTCRayHit rh;
-        init_embree_ray(rh.ray, r.o, r.d, INFINITY);
+        init_embree_ray(rh.ray, r.o, r.d, INFINITY, 1.0f);
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         RTCIntersectContext ctx;
@@ -211,11 +225,11 @@ private:
 
     Surface surface_at(const Hit& h, vec3 d) const {
         Surface s;
-        const vec3 v0 = vertices_[3 * h.prim], v1 = vertices_[3 * h.prim + 1], v2 = vertices_[3 * h.prim + 2];
-        s.ng = glm::normalize(glm::cross(v1 - v0, v2 - v0));
+        const TriangleRecord& t = tris_[h.prim];
+        s.ng = t.ng;
         s.front = glm::dot(s.ng, d) < 0.0f;
-        s.p = cpu::hit_point(v0, v1, v2, h.b1, h.b2, s.err);
-        s.m = &prepared_->materials[prepared_->triangle_material[h.prim]];
+        s.p = cpu::hit_point_edges(t.v0, t.e1, t.e2, h.b1, h.b2, s.err);
+        s.m = t.material;
         s.ns = s.ng;
         if (!prepared_->normals.empty()) {
             const vec3* n = &prepared_->normals[3 * std::size_t(h.prim)];
@@ -285,10 +299,16 @@ private:
         return L;
     }
 
+    struct TriangleRecord {
+        vec3 v0, e1, e2;  // e1 = v1 - v0, e2 = v2 - v0
+        vec3 ng;          // unit geometric normal, counter-clockwise = front
+        const Material* material;
+    };
+
     std::uint32_t max_depth_;
     std::shared_ptr<const PreparedScene> prepared_;
     std::vector<std::uint32_t> light_of_;  // per scene triangle: its light, or CLP_NO_LIGHT
-    std::vector<vec3> vertices_;
+    std::vector<TriangleRecord> tris_;     // per scene triangle
     CameraData camera_{};
     int width_ = 0, height_ = 0;
     std::unique_ptr<EmbreeScene> embree_;
@@ -298,13 +318,14 @@ private:
 
 std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene& scene,
                                                           std::shared_ptr<const PreparedScene> prepared,
-                                                          std::uint32_t max_depth, int threads) {
-    return std::make_unique<Tracer>(scene, std::move(prepared), max_depth, threads);
+                                                          std::uint32_t max_depth, EmbreeMode mode, int threads) {
+    return std::make_unique<Tracer>(scene, std::move(prepared), max_depth, mode, threads);
 }
 
-std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene& scene, std::uint32_t max_depth, int threads) {
+std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene& scene, std::uint32_t max_depth, EmbreeMode mode,
+                                                          int threads) {
     // The renderer's settings but for what prepare_scene reads (the BVH's), which stay the defaults.
-    return make_embree_path_tracer(scene, prepare_scene(scene, RenderSettings{}), max_depth, threads);
+    return make_embree_path_tracer(scene, prepare_scene(scene, RenderSettings{}), max_depth, mode, threads);
 }
 
 #endif

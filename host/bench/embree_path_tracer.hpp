@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/embree_scene.hpp"
 #include "scene/scene.hpp"
 
 namespace clpath {
@@ -43,24 +44,27 @@ public:
     // spp samples per pixel, sample s of pixel p drawn from the random stream
     // (p, s, seed) of kernels/rng.cl.
     virtual EmbreePathRun render(std::uint32_t spp, std::uint32_t seed) = 0;
-    // "Embree 3.13.5, 2 threads on Intel(R) Xeon(R) ..., rtcIntersect1/rtcOccluded1 single rays"
+    // "Embree 3.13.5, default mode (no RTC_SCENE_FLAG_ROBUST), 2 threads on Intel(R) Xeon(R) ..., rtcIntersect1/rtcOccluded1 single rays"
     virtual std::string describe() const = 0;
+    virtual EmbreeMode mode() const = 0;
 };
 
 // Whether this program was built with Embree.
 bool embree_path_built_in();
 
 // The tracer for the scene (its camera and resolution) at max_depth bounces,
-// on `threads` threads (0: every hardware thread). nullptr when built without
-// Embree; throws clpath::Error for an unsupported scene (the reasons of
-// embree_path_unsupported) or when Embree reports an error.
-std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene& scene, std::uint32_t max_depth, int threads = 0);
+// Embree in the given mode, on `threads` threads (0: every hardware thread).
+// nullptr when built without Embree; throws clpath::Error for an unsupported
+// scene (the reasons of embree_path_unsupported) or when Embree reports an error.
+std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene& scene, std::uint32_t max_depth,
+                                                          EmbreeMode mode = EmbreeMode::Default, int threads = 0);
 // The same, reading the light table, materials and normals from `prepared`,
 // the scene as prepare_scene made it for the renderer it is timed against
 // (so neither the BVH nor the light table is built twice).
 std::unique_ptr<EmbreePathTracer> make_embree_path_tracer(const Scene& scene,
                                                           std::shared_ptr<const PreparedScene> prepared,
-                                                          std::uint32_t max_depth, int threads = 0);
+                                                          std::uint32_t max_depth, EmbreeMode mode = EmbreeMode::Default,
+                                                          int threads = 0);
 
 // "Intel(R) Xeon(R) Processor" from /proc/cpuinfo, or "an unknown CPU".
 std::string cpu_model_name();

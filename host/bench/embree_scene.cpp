@@ -1,5 +1,15 @@
 #include "bench/embree_scene.hpp"
 
+namespace clpath {
+
+const char* embree_mode_name(EmbreeMode mode) { return mode == EmbreeMode::Robust ? "robust" : "default"; }
+
+std::string describe_embree_mode(EmbreeMode mode) {
+    return mode == EmbreeMode::Robust ? "robust mode (RTC_SCENE_FLAG_ROBUST)" : "default mode (no RTC_SCENE_FLAG_ROBUST)";
+}
+
+}  // namespace clpath
+
 #if CLPATH_WITH_EMBREE
 #include <algorithm>
 #include <chrono>
@@ -11,14 +21,15 @@
 
 namespace clpath {
 
-EmbreeScene::EmbreeScene(const std::vector<glm::vec3>& vertices, int threads) {
+EmbreeScene::EmbreeScene(const std::vector<glm::vec3>& vertices, int threads, EmbreeMode mode) : mode_(mode) {
     threads_ = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
     device_ = rtcNewDevice(("threads=" + std::to_string(threads_)).c_str());
     if (!device_) throw Error("Embree: cannot create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
     const auto t0 = std::chrono::steady_clock::now();
     scene_ = rtcNewScene(device_);
-    // Robust mode: watertight edges, as the kernels' and the CPU reference's triangle tests.
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    // Robust mode: watertight edges, as the kernels' and the CPU reference's
+    // triangle tests. The default mode leaves the flags as Embree's users do.
+    if (mode == EmbreeMode::Robust) rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
     RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
@@ -51,23 +62,6 @@ EmbreeScene::~EmbreeScene() {
 void EmbreeScene::check(const char* what) const {
     const RTCError e = rtcGetDeviceError(device_);
     if (e != RTC_ERROR_NONE) throw Error(std::string("Embree: ") + what + " failed (error " + std::to_string(int(e)) + ")");
-}
-
-void init_embree_ray(RTCRay& r, glm::vec3 o, glm::vec3 d, float tmax) {
-    const float mag = std::max({std::fabs(o.x), std::fabs(o.y), std::fabs(o.z)});
-    const float len = glm::length(d);
-    r.org_x = o.x;
-    r.org_y = o.y;
-    r.org_z = o.z;
-    r.tnear = len > 0 ? (1.0f + mag) * 1e-6f / len : 0.0f;
-    r.dir_x = d.x;
-    r.dir_y = d.y;
-    r.dir_z = d.z;
-    r.time = 0.0f;
-    r.tfar = tmax;
-    r.mask = ~0u;
-    r.id = 0;
-    r.flags = 0;
 }
 
 }  // namespace clpath

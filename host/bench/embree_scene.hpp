@@ -1,9 +1,30 @@
 #pragma once
 // Embree's device and scene over a triangle soup, as the CPU baselines use
-// them (bench/embree_baseline.hpp, bench/embree_path_tracer.hpp): robust
-// (watertight) triangles, a high-quality BVH, primID = the scene's triangle
-// index. Only in builds with Embree (CLPATH_WITH_EMBREE).
+// them (bench/embree_baseline.hpp, bench/embree_path_tracer.hpp): a
+// high-quality BVH, primID = the scene's triangle index, in one of two modes
+// (EmbreeMode). Only in builds with Embree (CLPATH_WITH_EMBREE).
+#include <string>
+
+namespace clpath {
+
+// Default: the scene flags Embree's users (and its own example renderers)
+// run with: no RTC_SCENE_FLAG_ROBUST, so Embree may take its faster,
+// non-watertight triangle test. Robust: RTC_SCENE_FLAG_ROBUST, watertight
+// like clpath's kernels and the CPU reference (the like-for-like guarantee),
+// which costs Embree speed.
+enum class EmbreeMode { Default, Robust };
+constexpr EmbreeMode kEmbreeModes[] = {EmbreeMode::Default, EmbreeMode::Robust};
+
+// "default", "robust": the names in reports and CSV columns.
+const char* embree_mode_name(EmbreeMode mode);
+// "default mode (no RTC_SCENE_FLAG_ROBUST)", "robust mode (RTC_SCENE_FLAG_ROBUST)"
+std::string describe_embree_mode(EmbreeMode mode);
+
+}  // namespace clpath
+
 #if CLPATH_WITH_EMBREE
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -16,13 +37,14 @@ public:
     // vertices: three per triangle, in the scene's order; threads: Embree's
     // own (for the build), 0: every hardware thread. Throws clpath::Error
     // when Embree reports an error.
-    EmbreeScene(const std::vector<glm::vec3>& vertices, int threads);
+    EmbreeScene(const std::vector<glm::vec3>& vertices, int threads, EmbreeMode mode);
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
     RTCScene scene() const { return scene_; }
     int threads() const { return threads_; }
+    EmbreeMode mode() const { return mode_; }
     double build_ms() const { return build_ms_; }
     // Throws clpath::Error naming `what` when Embree has reported an error since the last check.
     void check(const char* what) const;
@@ -31,6 +53,7 @@ private:
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     int threads_ = 1;
+    EmbreeMode mode_ = EmbreeMode::Default;
     double build_ms_ = 0;
 };
 
@@ -40,8 +63,26 @@ private:
 // Embree would report that surface at t = 0. Renderers built on Embree start
 // such rays a little way along instead; here, as Mitsuba 3 does, at
 // (1 + max |o_i|) 1e-6 (16 ulps of the larger of 1 and the origin's
-// magnitude), so Embree traces the rays clpath traces.
-void init_embree_ray(RTCRay& r, glm::vec3 o, glm::vec3 d, float tmax);
+// magnitude), so Embree traces the rays clpath traces. length: |d|, when the
+// caller knows it (1 for a unit direction).
+inline void init_embree_ray(RTCRay& r, glm::vec3 o, glm::vec3 d, float tmax, float length) {
+    const float mag = std::max(std::fabs(o.x), std::max(std::fabs(o.y), std::fabs(o.z)));
+    r.org_x = o.x;
+    r.org_y = o.y;
+    r.org_z = o.z;
+    r.tnear = length > 0 ? (1.0f + mag) * 1e-6f / length : 0.0f;
+    r.dir_x = d.x;
+    r.dir_y = d.y;
+    r.dir_z = d.z;
+    r.time = 0.0f;
+    r.tfar = tmax;
+    r.mask = ~0u;
+    r.id = 0;
+    r.flags = 0;
+}
+inline void init_embree_ray(RTCRay& r, glm::vec3 o, glm::vec3 d, float tmax) {
+    init_embree_ray(r, o, d, tmax, glm::length(d));
+}
 
 }  // namespace clpath
 #endif

@@ -33,8 +33,8 @@ std::string PathAgreement::describe() const {
         std::snprintf(buf, sizeof buf, "%s%c %.6g / %.6g (z %+.2f)", c ? ", " : "", names[c], mean_a[c], mean_b[c], z[c]);
         s += buf;
     }
-    std::snprintf(buf, sizeof buf, "; %dx%d regions x 3 channels, max |z| %.2f; bound |z| <= %.2f (%d tests, false failure < 1e-6)",
-                  grid, grid, max_region_z, bound, tests);
+    std::snprintf(buf, sizeof buf, "; %dx%d regions x 3 channels, max |z| %.2f; bound |z| <= %.2f (%d tests, false failure < %.2g)",
+                  grid, grid, max_region_z, bound, tests, false_failure);
     return s + buf;
 }
 
@@ -47,6 +47,7 @@ PathAgreement check_path_agreement(const Image& a, std::uint64_t n_a, const Path
     PathAgreement r;
     r.grid = grid;
     r.tests = 3 + 3 * grid * grid;
+    r.false_failure = false_failure;
     r.bound = bonferroni_z_bound(false_failure, r.tests);
     const double nb = double(b.spp), scale = 1.0 / double(n_a) + 1.0 / nb;
     const std::size_t cells = std::size_t(grid) * grid;

@@ -26,6 +26,7 @@ struct PathAgreement {
     double max_region_z = 0;                        // largest |z| over the regions and channels
     int worst_region = -1, worst_channel = -1;      // where (region = row * grid + column)
     double bound = 0;                               // |z| above it fails
+    double false_failure = 1e-6;                    // the chance that a correct pair fails, bound chosen for it
     int tests = 0;                                  // z-scores compared against the bound
     bool agrees() const;
     // "R 0.1234 / 0.1236 (z -0.51), G ..., B ...; 16 regions x 3 channels, max |z| 2.90; bound 5.73 (...)"

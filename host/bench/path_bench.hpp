@@ -1,7 +1,8 @@
 #pragma once
 // clpath bench path: clpath's renderer (the `path` integrator at a fixed
 // depth, no Russian roulette, on an OpenCL device) and the Embree path tracer
-// (bench/embree_path_tracer.hpp) render the same scene in interleaved rounds;
+// (bench/embree_path_tracer.hpp), Embree in its default mode and robust
+// (bench/embree_scene.hpp), render the same scene in interleaved rounds;
 // their speeds, and whether their images agree within their noise
 // (bench/path_agreement.hpp).
 #include <cstdint>
@@ -34,18 +35,21 @@ struct PathTiming {
 };
 
 struct PathRound {
-    PathTiming clpath, embree;
-    double samples_ratio() const;  // clpath / Embree, Msamples/s
-    double rays_ratio() const;     // clpath / Embree, Mrays/s
+    PathTiming clpath;
+    PathTiming embree[2];  // by EmbreeMode: default, robust
+    double samples_ratio(EmbreeMode m) const;  // clpath / Embree in mode m, Msamples/s
+    double rays_ratio(EmbreeMode m) const;     // clpath / Embree in mode m, Mrays/s
 };
 
 struct PathBenchResult {
-    std::string scene, clpath_device, embree;
+    std::string scene, clpath_device;
+    std::string embree[2];  // the Embree tracers' descriptions, by EmbreeMode
     std::size_t triangles = 0;
     int width = 0, height = 0;
     std::uint32_t spp = 0, max_depth = 0;
     std::vector<PathRound> rounds;
-    PathAgreement agreement;  // of the last round's two images
+    PathAgreement agreement[2];  // clpath's last image against each Embree tracer's, by EmbreeMode
+    bool agrees() const { return agreement[0].agrees() && agreement[1].agrees(); }
 };
 
 // Median of the values (the mean of the middle two for an even count); 0 for none.

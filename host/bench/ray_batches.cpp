@@ -135,6 +135,7 @@ EmbreeBatch embree_closest(EmbreeBaseline& embree, const Bvh& reference, const s
     std::vector<std::int64_t> prim;
     std::vector<float> t;
     EmbreeBatch e;
+    e.mode = embree.mode();
     take_timing(e, embree.closest(rays, o.launches, prim, t));
     std::vector<Hit> hits(rays.size());
     for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -151,6 +152,7 @@ EmbreeBatch embree_any(EmbreeBaseline& embree, const Bvh& reference, const std::
                        const RayBenchOptions& o) {
     std::vector<char> occluded;
     EmbreeBatch e;
+    e.mode = embree.mode();
     take_timing(e, embree.any(rays, o.launches, occluded));
     std::vector<int> occluder(rays.size());
     for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -289,16 +291,19 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
             std::to_string(variant->seconds) + " s");
     }
 
-    // The CPU baseline traces the same rays after the device, each batch in turn.
-    std::unique_ptr<EmbreeBaseline> embree;
+    // The CPU baselines trace the same rays after the device, each batch in
+    // turn: Embree in its default mode, then robust.
+    std::vector<std::unique_ptr<EmbreeBaseline>> embree;
     std::vector<std::uint32_t> leaf_of;
     if (o.embree) {
-        embree = make_embree_baseline(scene.vertices);
-        if (embree) {
-            res.embree = embree->describe();
-            leaf_of = leaf_index_of_prim(structure.triangles);
-            say("CPU baseline: " + res.embree);
+        for (EmbreeMode mode : kEmbreeModes) {
+            auto e = make_embree_baseline(scene.vertices, mode);
+            if (!e) break;
+            res.embree[int(mode)] = e->describe();
+            say("CPU baseline: " + res.embree[int(mode)]);
+            embree.push_back(std::move(e));
         }
+        if (!embree.empty()) leaf_of = leaf_index_of_prim(structure.triangles);
     }
 
     // Traces b.rays rays into out with trace kernel k: one warm-up launch,
@@ -342,7 +347,8 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     prim.hits = hit_list.size();
     prim.agreement = check_closest(reference, structure.triangles, primary_rays, primary_result, o.check);
     if (o.on_traced) o.on_traced(RayBatchKind::Primary, primary_rays, closest_hit_results(primary_result));
-    if (embree) prim.embree = embree_closest(*embree, reference, structure.triangles, leaf_of, primary_rays, o);
+    for (auto& e : embree)
+        prim.embree[int(e->mode())] = embree_closest(*e, reference, structure.triangles, leaf_of, primary_rays, o);
     res.batches.push_back(prim);
     if (!hit_list.empty()) ctx.write(src, hit_list.data(), hit_list.size() * sizeof(std::uint32_t));
     const std::uint32_t m = std::uint32_t(hit_list.size());
@@ -369,7 +375,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
         for (int x : occluder) shadow.hits += x >= 0;
         shadow.agreement = check_any(reference, rays, occluder, o.check);
         if (o.on_traced) o.on_traced(RayBatchKind::Shadow, rays, any_hit_results(occluder));
-        if (embree) shadow.embree = embree_any(*embree, reference, rays, o);
+        for (auto& e : embree) shadow.embree[int(e->mode())] = embree_any(*e, reference, rays, o);
     } else if (o.on_traced) {
         o.on_traced(RayBatchKind::Shadow, {}, {});
     }
@@ -390,7 +396,8 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
         for (const auto& h : hits) diffuse.hits += h.tri >= 0;
         diffuse.agreement = check_closest(reference, structure.triangles, rays, hits, o.check);
         if (o.on_traced) o.on_traced(RayBatchKind::Diffuse, rays, closest_hit_results(hits));
-        if (embree) diffuse.embree = embree_closest(*embree, reference, structure.triangles, leaf_of, rays, o);
+        for (auto& e : embree)
+            diffuse.embree[int(e->mode())] = embree_closest(*e, reference, structure.triangles, leaf_of, rays, o);
     } else if (o.on_traced) {
         o.on_traced(RayBatchKind::Diffuse, {}, {});
     }
@@ -409,15 +416,15 @@ std::string describe(const BatchResult& b) {
     return a.first_mismatch.empty() ? std::string(buf) : std::string(buf) + "\n  first mismatch: " + a.first_mismatch;
 }
 
-std::string describe_embree(const BatchResult& b) {
-    const EmbreeBatch& e = b.embree;
+std::string describe_embree(const BatchResult& b, EmbreeMode mode) {
+    const EmbreeBatch& e = b.embree_in(mode);
     const BatchAgreement& a = e.agreement;
     char buf[512];
     std::snprintf(buf, sizeof buf,
-                  "  Embree: %zu hit, %.3f ms mean / %.3f ms best, %.2f Mrays/s, clpath/Embree %.3f; CPU check: %zu "
-                  "rays, %.4f %% identical hits, %zu ties, %zu at the origin, %zu mismatched",
-                  e.hits, e.mean_ms, e.best_ms, e.mrays_per_s, b.over_embree(), a.checked, a.identical_percent(), a.ties,
-                  a.near_origin, a.mismatched);
+                  "  Embree %s mode: %zu hit, %.3f ms mean / %.3f ms best, %.2f Mrays/s, clpath/Embree %.3f; CPU check: "
+                  "%zu rays, %.4f %% identical hits, %zu ties, %zu at the origin, %zu mismatched",
+                  embree_mode_name(mode), e.hits, e.mean_ms, e.best_ms, e.mrays_per_s, b.over_embree(mode), a.checked,
+                  a.identical_percent(), a.ties, a.near_origin, a.mismatched);
     return a.first_mismatch.empty() ? std::string(buf) : std::string(buf) + "\n  Embree's first mismatch: " + a.first_mismatch;
 }
 

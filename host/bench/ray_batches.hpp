@@ -18,6 +18,7 @@
 #include <glm/glm.hpp>
 
 #include "bench/ab_ratios.hpp"
+#include "bench/embree_scene.hpp"
 #include "bench/ray_files.hpp"
 #include "bvh/accel.hpp"
 #include "cl/context.hpp"
@@ -36,7 +37,9 @@ struct RayBenchOptions {
     std::size_t check = std::size_t(1) << 18;  // rays per batch checked on the CPU (evenly spaced); 0: all
     std::uint32_t seed = 0;                    // diffuse directions
     BvhBuildOptions bvh;
-    bool embree = true;  // trace every batch with Embree too, when built with it (bench/embree_baseline.hpp)
+    // Trace every batch with Embree too, in its default mode and robust
+    // (bench/embree_scene.hpp), when built with it (bench/embree_baseline.hpp).
+    bool embree = true;
     // A variant of the kernels to time against the built-in ones (kernel
     // files replacing built-in ones, build options added). Each batch's launches then
     // alternate between the two programs, which goes first alternating too,
@@ -86,6 +89,7 @@ constexpr double kNearOrigin = 1e-4;
 // each pass), checked against the CPU reference like the device.
 struct EmbreeBatch {
     bool ran = false;
+    EmbreeMode mode = EmbreeMode::Default;
     std::size_t hits = 0;
     double best_ms = 0, mean_ms = 0;
     double mrays_per_s = 0;
@@ -99,10 +103,14 @@ struct BatchResult {
     double best_ms = 0, mean_ms = 0;
     double mrays_per_s = 0;  // rays / mean kernel time
     BatchAgreement agreement;
-    EmbreeBatch embree;
+    EmbreeBatch embree[2];  // by EmbreeMode: default, robust
     AbResult ab;
-    // The device's Mrays/s over Embree's; 0 when Embree did not run.
-    double over_embree() const { return embree.ran && embree.mrays_per_s > 0 ? mrays_per_s / embree.mrays_per_s : 0; }
+    const EmbreeBatch& embree_in(EmbreeMode m) const { return embree[int(m)]; }
+    // The device's Mrays/s over Embree's in that mode; 0 when Embree did not run.
+    double over_embree(EmbreeMode m) const {
+        const EmbreeBatch& e = embree_in(m);
+        return e.ran && e.mrays_per_s > 0 ? mrays_per_s / e.mrays_per_s : 0;
+    }
 };
 
 struct RayBenchResult {
@@ -115,7 +123,7 @@ struct RayBenchResult {
     std::string device;
     std::vector<BatchResult> batches;  // primary, shadow, diffuse
     std::vector<KernelInfo> kernels;   // the batch kernels on this device
-    std::string embree;                // the baseline's description; empty when it did not run
+    std::string embree[2];             // the baselines' descriptions by EmbreeMode; empty when they did not run
 };
 
 // The point light a scene is benchmarked with when none is given: its first
@@ -131,8 +139,8 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
 
 // "primary: 2457600 rays (786432 hit), 12.3 ms, 199.8 Mrays/s; CPU check: 262144 rays, 100.000 % identical, ..."
 std::string describe(const BatchResult& batch);
-// "  Embree: 40.1 ms mean / 39.8 ms best, 61.29 Mrays/s, clpath/Embree 0.39; CPU check: ..."
-std::string describe_embree(const BatchResult& batch);
+// "  Embree default mode: 40.1 ms mean / 39.8 ms best, 61.29 Mrays/s, clpath/Embree 0.39; CPU check: ..."
+std::string describe_embree(const BatchResult& batch, EmbreeMode mode);
 // The A/B line under it: "  A/B: variant/built-in 1.03 (quartiles 0.99-1.05) over 10
 // launch pairs; answers differ for 0 rays"; empty when no variant ran.
 std::string describe_ab(const BatchResult& batch);

@@ -43,6 +43,7 @@ void measure(Context& ctx, const Scene& scene, Accel accel, const ScalingOptions
     ro.launches = o.launches;
     ro.accel = accel;
     ro.check = o.check;
+    ro.embree = false;  // the table has no Embree column
     const RayBenchResult r = run_ray_bench(ctx, scene, ro);
     row.build_ms = r.structure.build_ms;
     row.mtris_per_s = r.structure.build_ms > 0 ? double(row.triangles) / (r.structure.build_ms * 1e-3) * 1e-6 : 0;

@@ -39,47 +39,24 @@ constexpr int kMaxBins = 256;
 // share of the threads, so the tree is the same for every thread count.
 constexpr std::uint32_t kBigNode = 1u << 14;
 
-// Per axis, the bins' boxes and counts, and the list of bins the SAH sweep
-// visits: all of them, or for a node over fewer triangles than bins only the
-// occupied ones (the same choice: the sweep's costs between two occupied bins
-// do not change, and it keeps the first of equal costs).
+// Per axis, the bins' boxes and counts. A node over at least as many
+// triangles as bins clears and fills them all (clear, then bin_refs); a
+// smaller node fills only the bins it occupies, each written whole by its
+// first triangle (bin_refs_sparse), and marks them in `occupied`, so nothing
+// needs clearing: its SAH sweep visits only those bins (the same choice as
+// visiting all: the costs between two occupied bins do not change, and the
+// sweep keeps the first of equal costs).
 struct Bins {
     Box4 box[3][kMaxBins];
     std::uint32_t count[3][kMaxBins];
-    std::uint8_t list[3][kMaxBins];
-    int listed[3] = {0, 0, 0};
-    bool sparse = false, used = false;
+    std::uint64_t occupied[3][kMaxBins / 64];
 
-    Bins() { clear_all(kMaxBins); }
-    void clear_all(int bins) {
+    void clear(int bins) {
         for (int a = 0; a < 3; ++a)
             for (int k = 0; k < bins; ++k) {
                 box[a][k] = Box4{};
                 count[a][k] = 0;
             }
-    }
-    void list_all(int bins) {
-        for (int a = 0; a < 3; ++a) {
-            for (int k = 0; k < bins; ++k) list[a][k] = std::uint8_t(k);
-            listed[a] = bins;
-        }
-        sparse = false;
-        used = true;
-    }
-    // Back to all empty: only the listed bins were touched.
-    void reset(int bins) {
-        if (!used) return;
-        if (!sparse) {
-            clear_all(bins);
-        } else {
-            for (int a = 0; a < 3; ++a)
-                for (int j = 0; j < listed[a]; ++j) {
-                    box[a][list[a][j]] = Box4{};
-                    count[a][list[a][j]] = 0;
-                }
-        }
-        listed[0] = listed[1] = listed[2] = 0;
-        sparse = used = false;
     }
     void merge(const Bins& o, int bins) {
         for (int a = 0; a < 3; ++a)
@@ -89,6 +66,26 @@ struct Bins {
             }
     }
 };
+
+// The bins an SAH sweep visits on one axis, in order.
+struct BinList {
+    std::uint8_t bin[kMaxBins];
+    int size = 0;
+};
+
+// All bins, 0 .. bins - 1.
+void list_all(int bins, BinList& l) {
+    for (int k = 0; k < bins; ++k) l.bin[k] = std::uint8_t(k);
+    l.size = bins;
+}
+
+// The occupied bins, in increasing order, from the bit masks.
+void list_occupied(const std::uint64_t* words, int bins, BinList& l) {
+    l.size = 0;
+    for (int w = 0; w * 64 < bins; ++w)
+        for (std::uint64_t m = words[w]; m; m &= m - 1)
+            l.bin[l.size++] = std::uint8_t(w * 64 + __builtin_ctzll(m));
+}
 
 // A subtree still to build: records [begin, end), in the scatter array when in_tmp.
 struct Range {
@@ -115,45 +112,64 @@ inline F4 centroid(F4 lo, F4 hi) {
 struct BinMap {
     F4 lo, scale, top;
     BinMap(const Box4& cbox, int bins) {
-        alignas(16) float e[4];
-        store4(e, cbox.hi - cbox.lo);
-        const float b = float(bins);
+        // One division per lane, as b / max(extent, 1e-30) per axis; lane 3 unused.
+        const F4 e = max4(cbox.hi - cbox.lo, splat(1e-30f));
         lo = cbox.lo;
-        scale = set4(b / std::max(e[0], 1e-30f), b / std::max(e[1], 1e-30f), b / std::max(e[2], 1e-30f), 0);
+        alignas(16) float sc[4];
+        store4(sc, splat(float(bins)) / e);
+        sc[3] = 0.0f;
+        scale = load4(sc);
         top = splat(float(bins - 1));
     }
     void operator()(F4 c, std::int32_t idx[4]) const { bin_index4((c - lo) * scale, top, idx); }
 };
 
+// Bins records [begin, end) into cleared bins.
 void bin_refs(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, Bins& bins) {
+    Box4* b0 = bins.box[0];
+    Box4* b1 = bins.box[1];
+    Box4* b2 = bins.box[2];
+    std::uint32_t* c0 = bins.count[0];
+    std::uint32_t* c1 = bins.count[1];
+    std::uint32_t* c2 = bins.count[2];
     for (std::uint32_t i = begin; i < end; ++i) {
         const F4 lo = load3(r[i].lo), hi = load3(r[i].hi);
-        alignas(16) std::int32_t idx[4];
-        map(centroid(lo, hi), idx);
-        for (int a = 0; a < 3; ++a) {
-            bins.box[a][idx[a]].grow(lo, hi);
-            ++bins.count[a][idx[a]];
-        }
+        int k0, k1, k2;
+        bin_index3((centroid(lo, hi) - map.lo) * map.scale, map.top, k0, k1, k2);
+        b0[k0].grow(lo, hi);
+        ++c0[k0];
+        b1[k1].grow(lo, hi);
+        ++c1[k1];
+        b2[k2].grow(lo, hi);
+        ++c2[k2];
     }
 }
 
-// bin_refs for fewer triangles than bins, listing the occupied bins in order.
-void bin_refs_sparse(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, Bins& bins) {
-    bins.sparse = bins.used = true;
+// bin_refs for a node over fewer triangles than bins: the first triangle in a
+// bin writes it, the occupied bins are marked; nothing needs clearing before.
+void bin_refs_sparse(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, int bins, Bins& b) {
+    for (int a = 0; a < 3; ++a)
+        for (int w = 0; w * 64 < bins; ++w) b.occupied[a][w] = 0;
+    auto put = [&b](int a, int k, F4 lo, F4 hi) {
+        std::uint64_t& word = b.occupied[a][k >> 6];
+        const std::uint64_t bit = std::uint64_t(1) << (k & 63);
+        if (word & bit) {
+            b.box[a][k].grow(lo, hi);
+            ++b.count[a][k];
+        } else {
+            word |= bit;
+            b.box[a][k].lo = lo;
+            b.box[a][k].hi = hi;
+            b.count[a][k] = 1;
+        }
+    };
     for (std::uint32_t i = begin; i < end; ++i) {
         const F4 lo = load3(r[i].lo), hi = load3(r[i].hi);
-        alignas(16) std::int32_t idx[4];
-        map(centroid(lo, hi), idx);
-        for (int a = 0; a < 3; ++a) {
-            const int k = idx[a];
-            bins.box[a][k].grow(lo, hi);
-            if (bins.count[a][k]++) continue;
-            // First in this bin: insert k into the sorted list.
-            std::uint8_t* l = bins.list[a];
-            int j = bins.listed[a]++;
-            for (; j > 0 && l[j - 1] > k; --j) l[j] = l[j - 1];
-            l[j] = std::uint8_t(k);
-        }
+        int k0, k1, k2;
+        bin_index3((centroid(lo, hi) - map.lo) * map.scale, map.top, k0, k1, k2);
+        put(0, k0, lo, hi);
+        put(1, k1, lo, hi);
+        put(2, k2, lo, hi);
     }
 }
 
@@ -235,51 +251,57 @@ private:
         return balanced_needs >= levels_left;
     }
 
-    static int longest_axis(const Box4& cbox) {
-        alignas(16) float e[4];
-        store4(e, cbox.hi - cbox.lo);
-        return e[0] >= e[1] && e[0] >= e[2] ? 0 : (e[1] >= e[2] ? 1 : 2);
+    // The cheapest split over the listed bins' boundaries on axis a
+    // (MacDonald & Booth 1990; Wald 2007): left area x count plus right area
+    // x count, not yet over the node's area. Keeps the first of equal costs.
+    static void sweep(const Bins& bins, int a, const BinList& list, std::uint32_t n, float& best_cost, int& best_axis,
+                      int& best_bin) {
+        float right_cost[kMaxBins];
+        const int m = list.size;
+        const Box4* box = bins.box[a];
+        const std::uint32_t* count = bins.count[a];
+        F4 lo = splat(std::numeric_limits<float>::infinity()), hi = splat(-std::numeric_limits<float>::infinity());
+        std::uint32_t cnt = 0;
+        for (int j = m - 1; j > 0; --j) {  // right side areas, swept from the right
+            const int k = list.bin[j];
+            lo = min4(lo, box[k].lo);
+            hi = max4(hi, box[k].hi);
+            cnt += count[k];
+            right_cost[j] = cnt ? area_of_extent(hi - lo) * float(cnt) : 0.0f;
+        }
+        lo = splat(std::numeric_limits<float>::infinity());
+        hi = splat(-std::numeric_limits<float>::infinity());
+        cnt = 0;
+        for (int j = 0; j < m - 1; ++j) {
+            const int k = list.bin[j];
+            lo = min4(lo, box[k].lo);
+            hi = max4(hi, box[k].hi);
+            cnt += count[k];
+            if (cnt == 0 || cnt == n) continue;
+            const float c = area_of_extent(hi - lo) * float(cnt) + right_cost[j + 1];
+            if (c < best_cost) {
+                best_cost = c;
+                best_axis = a;
+                best_bin = k;
+            }
+        }
     }
 
-    // The SAH over the bins' boundaries (MacDonald & Booth 1990; Wald 2007);
-    // fill(bins) bins the node's records.
+    // Leaf, SAH split or median split for node r, whose triangles
+    // dense_fill (at least as many as bins) or sparse_fill bins.
     template <class Fill>
-    Decision decide(const Range& r, Fill fill, Bins& bins) const {
+    Decision decide(const Range& r, Fill fill, Bins& bins, BinList* lists) const {
         const std::uint32_t n = r.end - r.begin;
-        const int axis_long = longest_axis(r.cbox);
-        alignas(16) float ext[4];
-        store4(ext, r.cbox.hi - r.cbox.lo);
+        const F4 ext4 = r.cbox.hi - r.cbox.lo;
+        const float ext[3] = {lane(ext4, 0), lane(ext4, 1), lane(ext4, 2)};
+        const int axis_long = ext[0] >= ext[1] && ext[0] >= ext[2] ? 0 : (ext[1] >= ext[2] ? 1 : 2);
         Decision d;
         float best_cost = std::numeric_limits<float>::infinity();
         int best_axis = -1, best_bin = 0;
         if (!force_median(r) && ext[axis_long] > 0) {
-            fill(bins);
-            float right_cost[kMaxBins];
-            for (int a = 0; a < 3; ++a) {
-                if (!(ext[a] > 0)) continue;
-                const std::uint8_t* list = bins.list[a];
-                const int m = bins.listed[a];
-                Box4 acc;
-                std::uint32_t cnt = 0;
-                for (int j = m - 1; j > 0; --j) {  // right side areas, swept from the right
-                    acc.grow(bins.box[a][list[j]]);
-                    cnt += bins.count[a][list[j]];
-                    right_cost[j] = cnt ? area(acc) * float(cnt) : 0.0f;
-                }
-                acc = Box4{};
-                cnt = 0;
-                for (int j = 0; j < m - 1; ++j) {
-                    acc.grow(bins.box[a][list[j]]);
-                    cnt += bins.count[a][list[j]];
-                    if (cnt == 0 || cnt == n) continue;
-                    const float c = area(acc) * float(cnt) + right_cost[j + 1];
-                    if (c < best_cost) {
-                        best_cost = c;
-                        best_axis = a;
-                        best_bin = list[j];
-                    }
-                }
-            }
+            fill(bins, lists);
+            for (int a = 0; a < 3; ++a)
+                if (ext[a] > 0) sweep(bins, a, lists[a], n, best_cost, best_axis, best_bin);
             const float node_area = area(r.box);
             const float split_cost = opt_.traversal_cost + (node_area > 0 ? best_cost / node_area : 0.0f);
             if (n <= std::uint32_t(opt_.max_leaf_size) && (best_axis < 0 || float(n) <= split_cost)) return d;
@@ -297,10 +319,10 @@ private:
     }
 
     // The children's boxes from the bins: exact, as every bin holds the union of its triangles' boxes.
-    void child_boxes(const Bins& bins, const Decision& d, Box4& left, Box4& right) const {
+    static void child_boxes(const Bins& bins, const BinList& list, const Decision& d, Box4& left, Box4& right) {
         left = right = Box4{};
-        for (int j = 0; j < bins.listed[d.axis]; ++j) {
-            const int k = bins.list[d.axis][j];
+        for (int j = 0; j < list.size; ++j) {
+            const int k = list.bin[j];
             (k <= d.bin ? left : right).grow(bins.box[d.axis][k]);
         }
     }
@@ -353,8 +375,11 @@ private:
         for (const Range& r : level) maps.emplace_back(r.cbox, opt_.bins);
         std::vector<Bins> part(L * std::size_t(T));
         fork_join(T, [&](int t) {
-            for (std::size_t i = 0; i < L; ++i)
-                bin_refs(refs(level[i]), chunk(i, t), chunk(i, t + 1), maps[i], part[i * std::size_t(T) + std::size_t(t)]);
+            for (std::size_t i = 0; i < L; ++i) {
+                Bins& b = part[i * std::size_t(T) + std::size_t(t)];
+                b.clear(opt_.bins);
+                bin_refs(refs(level[i]), chunk(i, t), chunk(i, t + 1), maps[i], b);
+            }
         });
         struct Split {
             Decision d;
@@ -362,22 +387,24 @@ private:
             std::vector<std::uint32_t> left_at, right_at;  // per chunk: where its records go
         };
         std::vector<Split> split(L);
-        Bins total;
+        auto total_bins = std::make_unique<Bins>();
+        Bins& total = *total_bins;
+        BinList lists[3];
         for (std::size_t i = 0; i < L; ++i) {
             const Range& r = level[i];
             Split& sp = split[i];
             const Bins* p = &part[i * std::size_t(T)];
             sp.d = decide(
                 r,
-                [&](Bins& bins) {
-                    bins.clear_all(opt_.bins);
+                [&](Bins& bins, BinList* lists) {
+                    bins.clear(opt_.bins);
                     for (int t = 0; t < T; ++t) bins.merge(p[t], opt_.bins);
-                    bins.list_all(opt_.bins);
+                    for (int a = 0; a < 3; ++a) list_all(opt_.bins, lists[a]);
                 },
-                total);
+                total, lists);
             if (sp.d.kind != Decision::Sah) continue;
             // Each chunk's left count is known from its bins: scatter without a counting pass.
-            child_boxes(total, sp.d, sp.left.box, sp.right.box);
+            child_boxes(total, lists[sp.d.axis], sp.d, sp.left.box, sp.right.box);
             std::uint32_t left_total = 0;
             for (int t = 0; t < T; ++t)
                 for (int k = 0; k <= sp.d.bin; ++k) left_total += p[t].count[sp.d.axis][k];
@@ -440,26 +467,35 @@ private:
     // A whole subtree on one thread: depth first, partitions in place. Returns its leaf count.
     std::size_t subtree(const Range& root, Bins& bins) {
         Range stack[2 * CLP_BVH_MAX_DEPTH + 4];
+        BinList lists[3];
         int sp = 0;
         std::size_t leaf_count = 0;
         stack[sp++] = root;
+        const std::uint32_t dense_from = std::uint32_t(opt_.bins);
         while (sp > 0) {
             const Range r = stack[--sp];
             Ref* a = refs(r);
+            const std::uint32_t n = r.end - r.begin;
+            if (n == 1) {  // a point's centroid bounds: decide() would find no split either
+                leaf(r);
+                ++leaf_count;
+                continue;
+            }
             const BinMap map(r.cbox, opt_.bins);
             const Decision d = decide(
                 r,
-                [&](Bins& b) {
-                    if (r.end - r.begin < std::uint32_t(opt_.bins)) {
-                        bin_refs_sparse(a, r.begin, r.end, map, b);
+                [&](Bins& b, BinList* l) {
+                    if (n < dense_from) {
+                        bin_refs_sparse(a, r.begin, r.end, map, opt_.bins, b);
+                        for (int ax = 0; ax < 3; ++ax) list_occupied(b.occupied[ax], opt_.bins, l[ax]);
                     } else {
+                        b.clear(opt_.bins);
                         bin_refs(a, r.begin, r.end, map, b);
-                        b.list_all(opt_.bins);
+                        for (int ax = 0; ax < 3; ++ax) list_all(opt_.bins, l[ax]);
                     }
                 },
-                bins);
+                bins, lists);
             if (d.kind == Decision::Leaf) {
-                bins.reset(opt_.bins);  // the bins are empty between nodes
                 leaf(r);
                 ++leaf_count;
                 continue;
@@ -468,23 +504,24 @@ private:
             std::uint32_t m = r.begin;
             if (d.kind == Decision::Sah) {
                 std::uint32_t i = r.begin, j = r.end;
+                Box4 lcb, rcb;
                 while (i < j) {
                     const F4 lo = load3(a[i].lo), hi = load3(a[i].hi), c = centroid(lo, hi);
                     alignas(16) std::int32_t idx[4];
                     map(c, idx);
                     if (idx[d.axis] <= d.bin) {
-                        left.cbox.grow_point(c);
+                        lcb.grow_point(c);
                         ++i;
                     } else {
-                        right.cbox.grow_point(c);
+                        rcb.grow_point(c);
                         std::swap(a[i], a[--j]);
                     }
                 }
                 m = i;
-                child_boxes(bins, d, left.box, right.box);
-                bins.reset(opt_.bins);
+                left.cbox = lcb;
+                right.cbox = rcb;
+                child_boxes(bins, lists[d.axis], d, left.box, right.box);
             } else {
-                bins.reset(opt_.bins);
                 m = median_split(r, d.axis, left, right);
             }
             set_children(r, m, r.in_tmp, left, right);

@@ -29,11 +29,31 @@ inline F4 max4(F4 a, F4 b) { return {_mm_max_ps(a.v, b.v)}; }
 inline F4 operator+(F4 a, F4 b) { return {_mm_add_ps(a.v, b.v)}; }
 inline F4 operator-(F4 a, F4 b) { return {_mm_sub_ps(a.v, b.v)}; }
 inline F4 operator*(F4 a, F4 b) { return {_mm_mul_ps(a.v, b.v)}; }
+inline F4 operator/(F4 a, F4 b) { return {_mm_div_ps(a.v, b.v)}; }
 // Truncates (x clamped to [0, top]) to integers; a NaN lane gives 0: maxps
 // returns its second operand when either is NaN.
 inline void bin_index4(F4 x, F4 top, std::int32_t out[4]) {
     const __m128 c = _mm_min_ps(_mm_max_ps(x.v, _mm_setzero_ps()), top.v);
     _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_cvttps_epi32(c));
+}
+// bin_index4's x, y, z lanes, straight into registers.
+inline void bin_index3(F4 x, F4 top, int& k0, int& k1, int& k2) {
+    const __m128i k = _mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(x.v, _mm_setzero_ps()), top.v));
+    k0 = _mm_cvtsi128_si32(k);
+    k1 = _mm_cvtsi128_si32(_mm_shuffle_epi32(k, 1));
+    k2 = _mm_cvtsi128_si32(_mm_shuffle_epi32(k, 2));
+}
+// 2 (x y + y z + z x) of the x, y, z lanes, summed in that order (so equal to
+// the scalar expression bit for bit), without a trip through memory.
+inline float area_of_extent(F4 e) {
+    const __m128 p = _mm_mul_ps(e.v, _mm_shuffle_ps(e.v, e.v, _MM_SHUFFLE(3, 0, 2, 1)));  // xy, yz, zx
+    const __m128 s = _mm_add_ss(_mm_add_ss(p, _mm_shuffle_ps(p, p, 1)), _mm_shuffle_ps(p, p, 2));
+    return 2.0f * _mm_cvtss_f32(s);
+}
+inline float lane(F4 a, int i) {
+    alignas(16) float e[4];
+    _mm_store_ps(e, a.v);
+    return e[i];
 }
 #else
 struct F4 {
@@ -60,6 +80,7 @@ CLPATH_F4_OP(max4, y > x ? y : x)
 CLPATH_F4_OP(operator+, x + y)
 CLPATH_F4_OP(operator-, x - y)
 CLPATH_F4_OP(operator*, x * y)
+CLPATH_F4_OP(operator/, x / y)
 #undef CLPATH_F4_OP
 inline void bin_index4(F4 x, F4 top, std::int32_t out[4]) {
     for (int i = 0; i < 4; ++i) {
@@ -68,6 +89,13 @@ inline void bin_index4(F4 x, F4 top, std::int32_t out[4]) {
         out[i] = std::int32_t(c);
     }
 }
+inline void bin_index3(F4 x, F4 top, int& k0, int& k1, int& k2) {
+    std::int32_t k[4];
+    bin_index4(x, top, k);
+    k0 = k[0], k1 = k[1], k2 = k[2];
+}
+inline float area_of_extent(F4 e) { return 2.0f * (e.v[0] * e.v[1] + e.v[1] * e.v[2] + e.v[2] * e.v[0]); }
+inline float lane(F4 a, int i) { return a.v[i]; }
 #endif
 
 // An axis-aligned box; lane 3 is ignored.
@@ -83,10 +111,6 @@ struct Box4 {
 };
 
 // Surface area of a non-empty box (x, y, z lanes).
-inline float area(const Box4& b) {
-    alignas(16) float e[4];
-    store4(e, b.hi - b.lo);
-    return 2.0f * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]);
-}
+inline float area(const Box4& b) { return area_of_extent(b.hi - b.lo); }
 
 }  // namespace clpath::bvh_build

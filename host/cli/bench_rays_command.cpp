@@ -121,19 +121,22 @@ int run_rays(const RaysOptions& o) {
                 double(r.structure_bytes) / double(r.triangles), r.light.x, r.light.y, r.light.z, bo.workgroup,
                 r.device.c_str());
     for (const auto& k : r.kernels) std::printf("kernel %s\n", describe(k).c_str());
-    if (!r.embree.empty()) std::printf("CPU baseline: %s\n", r.embree.c_str());
+    for (EmbreeMode m : kEmbreeModes)
+        if (!r.embree[int(m)].empty()) std::printf("CPU baseline: %s\n", r.embree[int(m)].c_str());
     bool agree = true;
     for (const auto& b : r.batches) {
         std::printf("%s\n", describe(b).c_str());
-        if (b.embree.ran) std::printf("%s\n", describe_embree(b).c_str());
+        for (EmbreeMode m : kEmbreeModes)
+            if (b.embree_in(m).ran) std::printf("%s\n", describe_embree(b, m).c_str());
         if (b.ab.ran) std::printf("%s\n", describe_ab(b).c_str());
         agree = agree && b.agreement.agrees();
     }
     if (!o.csv.empty()) {
         std::ostringstream csv;
         csv << "device,scene,triangles,accel,batch,width,height,workgroup,rays,hits,launches,mean_ms,best_ms,"
-               "mrays_per_s,checked,identical_percent,ties,near_origin,mismatched,max_dt,embree_mean_ms,"
-               "embree_mrays_per_s,clpath_over_embree,embree_mismatched\n";
+               "mrays_per_s,checked,identical_percent,ties,near_origin,mismatched,max_dt,embree_default_mean_ms,"
+               "embree_default_mrays_per_s,clpath_over_embree_default,embree_default_mismatched,embree_robust_mean_ms,"
+               "embree_robust_mrays_per_s,clpath_over_embree_robust,embree_robust_mismatched\n";
         for (const auto& b : r.batches) {
             char line[512];
             std::snprintf(line, sizeof line, ",%zu,%s,%s,%d,%d,%zu,%zu,%zu,%zu,%.4f,%.4f,%.3f,%zu,%.4f,%zu,%zu,%zu,%.3g\n",
@@ -141,11 +144,17 @@ int run_rays(const RaysOptions& o) {
                           b.hits, b.launch_ms.size(), b.mean_ms, b.best_ms, b.mrays_per_s, b.agreement.checked,
                           b.agreement.identical_percent(), b.agreement.ties, b.agreement.near_origin, b.agreement.mismatched,
                           b.agreement.max_dt);
-            // Embree's columns stay empty when it did not run (built without it, or --no-embree).
-            char embree[160] = ",,,,";
-            if (b.embree.ran)
-                std::snprintf(embree, sizeof embree, ",%.4f,%.3f,%.4f,%zu", b.embree.mean_ms, b.embree.mrays_per_s,
-                              b.over_embree(), b.embree.agreement.mismatched);
+            // Embree's columns, default mode first, stay empty when it did not
+            // run (built without it, or --no-embree).
+            std::string embree;
+            for (EmbreeMode m : kEmbreeModes) {
+                const EmbreeBatch& e = b.embree_in(m);
+                char cols[160] = ",,,,";
+                if (e.ran)
+                    std::snprintf(cols, sizeof cols, ",%.4f,%.3f,%.4f,%zu", e.mean_ms, e.mrays_per_s, b.over_embree(m),
+                                  e.agreement.mismatched);
+                embree += cols;
+            }
             std::string row = line;
             row.insert(row.size() - 1, embree);  // before the newline
             csv << csv_field(r.device) << "," << csv_field(r.scene) << row;
@@ -202,7 +211,8 @@ Command add_bench_rays_command(CLI::App& bench) {
     cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
     cmd->add_flag("--quick", o->quick, "32x24 pixels, one timed launch, every ray checked (for CI)");
     cmd->add_flag("--no-embree", o->no_embree,
-                  embree_built_in() ? "Skip the Embree CPU baseline (by default it traces every batch too)"
+                  embree_built_in() ? "Skip the Embree CPU baselines (by default Embree traces every batch too, in its default "
+                                      "mode and robust)"
                                     : "Skip the Embree CPU baseline (this build has none)");
     return [o] { return run_rays(*o); };
 }

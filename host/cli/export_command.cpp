@@ -1,6 +1,8 @@
 // clpath export SCENE OUT.json: the scene as OBJ + MTL + a clpath scene file,
 // for rendering references with another renderer (Blender Cycles); with
-// --format mitsuba, a Mitsuba 3 scene dictionary and one OBJ per material.
+// --format mitsuba, a Mitsuba 3 scene dictionary and one OBJ per material;
+// with --format embree (OUT.ecs), OBJ + MTL + a command script for Embree's
+// example path tracer.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -9,6 +11,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/option_checks.hpp"
+#include "scene/export/embree_export.hpp"
 #include "scene/export/mitsuba_export.hpp"
 #include "scene/export/obj_export.hpp"
 #include "scene/load/scene_loader.hpp"
@@ -61,7 +64,11 @@ int run_mitsuba_export(const ExportArgs& o, const Scene& scene) {
 int run_export(const ExportArgs& o) {
     namespace fs = std::filesystem;
     const fs::path json = o.out;
-    if (json.extension() != ".json")
+    const bool embree = o.format == "embree";
+    if (embree && json.extension() != ".ecs")
+        throw UsageError("output " + o.out + ": --format embree writes an Embree command script, NAME.ecs (the OBJ and "
+                         "MTL go beside it)");
+    if (!embree && json.extension() != ".json")
         throw UsageError("output " + o.out + ": must end in .json (the OBJ and MTL go beside it)");
     const std::string stem = json.stem().string();
     const fs::path obj = fs::path(json).replace_extension(".obj"), mtl = fs::path(json).replace_extension(".mtl");
@@ -85,7 +92,14 @@ int run_export(const ExportArgs& o) {
     }
     ObjExport e;
     try {
-        e = export_obj_scene(scene, stem, o.scene);
+        if (embree) {
+            EmbreeExport x = export_embree_scene(scene, stem, o.scene);
+            e.obj = std::move(x.obj);
+            e.mtl = std::move(x.mtl);
+            e.json = std::move(x.ecs);  // written where the scene file would be: the path ends in .ecs
+        } else {
+            e = export_obj_scene(scene, stem, o.scene);
+        }
     } catch (const Error& err) {
         throw Error(o.scene + ": cannot export: " + err.what());
     }
@@ -120,6 +134,8 @@ Command add_export_command(CLI::App& app) {
         "and a constant-colour environment, and refuses, naming the first one met: mirror, conductor (glossy) and\n"
         "dielectric (glass) materials, smooth shading normals, punctual lights (point, spot, directional: so a\n"
         "bare mesh's default sun too) and environment images. --format mitsuba exports every material and light.\n"
+        "--format embree (OUT ends in .ecs) writes OBJ + MTL and an Embree command script for Embree's example\n"
+        "path tracer (`pathtracer -c OUT.ecs`, Debian's embree-tools): diffuse surfaces and point lights only.\n"
         "The output folder is created if missing.");
     cmd->add_option("scene", o->scene, scene_argument_help())->required();
     cmd->add_option("out", o->out, "Output scene file NAME.json; NAME.obj and NAME.mtl are written beside it")
@@ -130,8 +146,9 @@ Command add_export_command(CLI::App& app) {
         ->check(whole_number(0, 1024));
     cmd->add_option("--format", o->format,
                     "obj: OBJ + MTL + scene file, diffuse and emissive surfaces only (Cycles); mitsuba: a Mitsuba 3 "
-                    "scene dictionary (JSON) and one OBJ per material, every material and light (Mitsuba references)")
-        ->check(CLI::IsMember({"obj", "mitsuba"}));
+                    "scene dictionary (JSON) and one OBJ per material, every material and light (Mitsuba references); "
+                    "embree: OBJ + MTL + an Embree command script (.ecs) for Embree's pathtracer example")
+        ->check(CLI::IsMember({"obj", "mitsuba", "embree"}));
     return [o] { return run_export(*o); };
 }
 

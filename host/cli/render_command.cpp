@@ -19,6 +19,8 @@
 #include "cli/progress.hpp"
 #include "image/image.hpp"
 #include "cl/device_set.hpp"
+#include "denoise/denoiser.hpp"
+#include "denoise/guides.hpp"
 #include "mpi/launch.hpp"
 #include "render/render_session.hpp"
 #include "render/renderer.hpp"
@@ -75,6 +77,7 @@ struct RenderOptions {
     std::optional<std::string> camera, env;
     bool no_ground = false;
     bool no_partial = false;
+    bool denoise = false;
 };
 
 // Only a bare mesh (an OBJ, or a glTF model) gets the presentation's ground
@@ -83,6 +86,12 @@ bool is_bare_mesh(const std::string& spec) {
     std::string ext = std::filesystem::path(spec).extension().string();
     for (auto& c : ext) c = char(std::tolower((unsigned char)c));
     return ext == ".obj" || ext == ".gltf" || ext == ".glb";
+}
+
+// Where --denoise puts the denoised twin of an output: out.png -> out.denoised.png.
+std::string denoised_path(const std::string& out) {
+    std::filesystem::path p(out);
+    return (p.parent_path() / (p.stem().string() + ".denoised" + p.extension().string())).string();
 }
 
 int run_render(const RenderOptions& o) {
@@ -134,7 +143,21 @@ int run_render(const RenderOptions& o) {
         std::filesystem::create_directories("out");
         outputs = {"out/" + scene.name + ".png", "out/" + scene.name + ".exr"};
     }
-    for (const auto& out : outputs) check_output_path(out);
+    for (const auto& out : outputs) {
+        check_output_path(out);
+        if (o.denoise) check_output_path(denoised_path(out));
+    }
+    // The library is loaded and its device made before anything renders, so
+    // a missing library costs no render.
+    std::unique_ptr<Denoiser> denoiser;
+    if (o.denoise) {
+        try {
+            denoiser = std::make_unique<Denoiser>();
+        } catch (const Error& e) {
+            throw Error(std::string("--denoise: ") + e.what());
+        }
+        if (!o.quiet) std::fprintf(stderr, "clpath: denoising with %s\n", denoiser->library_path().c_str());
+    }
     // --time alone renders until the time is up; --spp with it caps the samples.
     const std::uint64_t spp = o.spp ? *o.spp : (o.time_limit > 0 ? 0 : scene.render.spp);
     validate_settings(settings);
@@ -183,6 +206,19 @@ int run_render(const RenderOptions& o) {
         throw Error(o.scene + ": " + e.what());
     }
     if (progress) progress->finish();
+    GuideRender guides;
+    if (denoiser && !result.stopped) {
+        try {
+            guides = render_guides(scene, settings, devices, kGuideSamples, mpi);
+        } catch (const UsageError&) {
+            throw;
+        } catch (const Error& e) {
+            throw Error(o.scene + ": the denoiser's guides: " + e.what());
+        }
+        if (show_progress)
+            std::fprintf(stderr, "clpath: rendered the denoiser's guides (albedo, normals; %llu spp each) in %.3f s\n",
+                         (unsigned long long)kGuideSamples, guides.seconds);
+    }
     if (!result.leads) return 0;
     const std::uint64_t done_spp = result.film.samples_per_pixel();
     if (result.stopped) {
@@ -202,6 +238,23 @@ int run_render(const RenderOptions& o) {
         write_image(out, image);
         if (!o.quiet) std::fprintf(stderr, "clpath: wrote %s\n", out.c_str());
     }
+    double denoise_seconds = 0;
+    if (denoiser && result.stopped) {
+        std::fprintf(stderr, "clpath: interrupted: not denoised\n");
+    } else if (denoiser) {
+        const auto start = std::chrono::steady_clock::now();
+        RenderedImage denoised;
+        denoised.linear = denoiser->denoise(image.linear, &guides.guides);
+        denoise_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        denoised.srgb8 = display_srgb8(denoised.linear, display);
+        if (!o.quiet)
+            std::fprintf(stderr, "clpath: denoised in %.3f s (%.3f s per megapixel)\n", denoise_seconds,
+                         denoise_seconds / (double(scene.camera.width) * scene.camera.height * 1e-6));
+        for (const auto& out : outputs) {
+            write_image(denoised_path(out), denoised);
+            if (!o.quiet) std::fprintf(stderr, "clpath: wrote %s\n", denoised_path(out).c_str());
+        }
+    }
     // A finished render needs its checkpoint no more.
     if (!result.stopped && o.checkpoint_seconds > 0) std::filesystem::remove(so.checkpoint_path);
 
@@ -212,13 +265,16 @@ int run_render(const RenderOptions& o) {
     std::printf(
         "summary: device=\"%s\" devices=%zu integrator=%s triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f "
         "spp=%llu render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s kernel=%s "
-        "bytes_to_device=%llu bytes_from_device=%llu%s\n",
+        "bytes_to_device=%llu bytes_from_device=%llu%s%s\n",
         device_names.c_str(), result.shares.size(), integrator_name(settings.integrator), scene.triangle_count(),
         result.bvh.build_ms, result.bvh.node_count, result.bvh.sah_cost, (unsigned long long)done_spp, wall,
         samples / wall * 1e-6, double(result.rays) / wall * 1e-6, (unsigned long long)result.rays,
         (unsigned long long)result.nonfinite, accel_name(settings.accel), kernel_shapes_used(result.shares).c_str(),
         (unsigned long long)result.bytes_to_device, (unsigned long long)result.bytes_from_device,
-        result.stopped ? " interrupted=1" : "");
+        result.stopped ? " interrupted=1" : "",
+        denoiser && !result.stopped
+            ? (" denoise_s=" + std::to_string(denoise_seconds) + " guides_s=" + std::to_string(guides.seconds)).c_str()
+            : "");
     if (result.shares.size() > 1 || mpi)
         for (const auto& s : result.shares)
             std::printf("device: \"%s\" chunks=%llu spp=%llu share=%.1f%% msamples_per_s=%.3f\n", s.device.c_str(),
@@ -279,6 +335,9 @@ Command add_render_command(CLI::App& app) {
     cmd->add_option("--env", o->env,
                     "Environment override: a colour R,G,B (or one grey value) or an equirectangular .hdr/.exr "
                     "image; for a bare mesh (.obj, .gltf, .glb) it replaces the default sky and sun");
+    cmd->add_flag("--denoise", o->denoise,
+                  "Also write each output denoised by Intel Open Image Denoise, beside it (out.png: "
+                  "out.denoised.png), guided by albedo and normals passes; the estimate is unchanged");
     cmd->add_flag("--no-ground", o->no_ground, "A bare mesh (.obj, .gltf, .glb) gets no ground plane");
     cmd->add_option("--out,-o", o->outputs,
                     "Output image, .png (8-bit sRGB), .exr or .pfm (linear float); repeatable "
@@ -303,7 +362,7 @@ Command add_render_command(CLI::App& app) {
         ->check(CLI::IsMember(accel_names()))
         ->capture_default_str();
     cmd->add_option("--kernel", o->kernel,
-                    "Kernel shape: auto (the wavefront on GPUs, the megakernel on CPUs), mega (one kernel per path) "
+                    "Kernel shape: auto (the one measured faster on the device's kind: mega today), mega (one kernel per path) "
                     "or wavefront (small kernels over queues of paths; path and path-bsdf only)")
         ->check(CLI::IsMember(kernel_shape_names()))
         ->capture_default_str();

@@ -158,18 +158,21 @@ void IntegratorProgram::ensure_wavefront_buffers(std::uint32_t paths) {
 
 void IntegratorProgram::launch_waves(const DeviceScene& scene, Film& film, PendingLaunch& p,
                                      std::uint32_t pixel_count, std::uint32_t samples) {
-    ensure_wavefront_buffers(pixel_count);
+    // As many samples a wave as the path state holds: each launch then has
+    // more paths to run and a launch's fixed cost is paid fewer times.
+    const std::uint32_t per_wave = std::max<std::uint32_t>(1, std::min(samples, kWavefrontPaths / pixel_count));
+    ensure_wavefront_buffers(pixel_count * per_wave);
     const cl_uint cap = wf_.capacity;
     // On a CPU the queue lengths are read back after each bounce to size the
     // next launches (a read costs microseconds there, an idle work-item
-    // does not); a GPU runs every bounce over the whole band, the work-items
+    // does not); a GPU runs every bounce over the whole wave, the work-items
     // past the queue's end returning at once, and never waits for the host.
     const bool read_lengths = !ctx_.device().is_gpu;
     scene.bind(wf_.trace, 0);
     scene.bind(wf_.shade, 0);
     scene.bind(wf_.shadow, 0);
     const cl_uint k = DeviceScene::kArgCount;
-    wf_.camera.arg(0, params_).arg(2, wf_.paths).arg(3, cap).arg(5, wf_.counts);
+    wf_.camera.arg(0, params_).arg(3, wf_.paths).arg(4, cap).arg(6, wf_.counts);
     wf_.trace.arg(k, params_).arg(k + 1, wf_.paths).arg(k + 2, cap).arg(k + 4, wf_.counts).arg(k + 5, wf_.hits)
         .arg(k + 6, counters_);
     wf_.shade.arg(k, params_).arg(k + 1, wf_.paths).arg(k + 2, cap).arg(k + 5, wf_.counts).arg(k + 6, wf_.hits)
@@ -177,16 +180,18 @@ void IntegratorProgram::launch_waves(const DeviceScene& scene, Film& film, Pendi
     wf_.shadow.arg(k, params_).arg(k + 1, wf_.paths).arg(k + 2, cap).arg(k + 3, wf_.counts).arg(k + 4, wf_.shadows)
         .arg(k + 5, counters_);
     wf_.next_bounce.arg(0, wf_.counts);
-    wf_.accumulate.arg(0, params_).arg(1, wf_.paths).arg(2, cap).arg(3, film.accumulation_buffer()).arg(4, counters_);
-    for (cl_uint wave = 0; wave < samples; ++wave) {
+    wf_.accumulate.arg(0, params_).arg(2, wf_.paths).arg(3, cap).arg(4, film.accumulation_buffer()).arg(5, counters_);
+    for (cl_uint first = 0; first < samples; first += per_wave) {
+        const cl_uint n = std::min(per_wave, samples - first);
+        const std::size_t paths = std::size_t(pixel_count) * n;
         ctx_.fill_async(wf_.counts, 0);
-        wf_.camera.arg(1, wave).arg(4, wf_.queues[0]);
-        cl_event e = ctx_.launch(wf_.camera, pixel_count, kWorkGroup, wave == 0);
-        if (wave == 0) p.first_kernel = e;
+        wf_.camera.arg(1, first).arg(2, n).arg(5, wf_.queues[0]);
+        cl_event e = ctx_.launch(wf_.camera, paths, kWorkGroup, first == 0);
+        if (first == 0) p.first_kernel = e;
         // Bounce d traces the rays of the paths still alive after d bounces:
         // at most CLP_MAX_DEPTH + 1 closest hits a path.
         for (std::uint32_t d = 0, in = 0; d <= settings_.max_depth; ++d, in ^= 1u) {
-            std::size_t global = pixel_count;
+            std::size_t global = paths;
             if (read_lengths) {
                 cl_uint queued = 0;
                 ctx_.read(wf_.counts, &queued, sizeof queued);
@@ -200,6 +205,7 @@ void IntegratorProgram::launch_waves(const DeviceScene& scene, Film& film, Pendi
             ctx_.launch(wf_.shadow, global, kWorkGroup);
             ctx_.launch(wf_.next_bounce, 1, 0);
         }
+        wf_.accumulate.arg(1, n);
         ctx_.launch(wf_.accumulate, pixel_count, kWorkGroup);
     }
 }

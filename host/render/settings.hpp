@@ -55,9 +55,9 @@ struct RenderSettings {
 // with no bounce, say).
 void validate_settings(const RenderSettings& settings);
 
-// The shape a render takes on a device: Auto becomes the wavefront on GPUs and
-// the megakernel on CPUs (README, "Kernel shapes": measured on PoCL; on GPUs
-// the wavefront's kernels fit the register budget the megakernel cannot).
+// The shape a render takes on a device: Auto becomes the shape measured
+// faster on that kind of device (README, "Kernel shapes"), today the
+// megakernel on CPUs (PoCL) and on GPUs (an NVIDIA H200) alike.
 // Only the light-transport integrators (path, path-bsdf) have a wavefront
 // shape: the one-bounce views (ao, normals, ...) run as the megakernel under
 // Auto, and asking for the wavefront with them is an error. Under Auto, the

@@ -8,13 +8,17 @@ clpath_cli_test(bench_rays_kernel_info ARGS bench rays cornell --quick --no-embr
                 OUTPUT "kernel batch_trace_closest: private [0-9]+ B, local [0-9]+ B, preferred multiple [1-9][0-9]*, at most [1-9][0-9]* per group")
 
 if(CLPATH_WITH_EMBREE)
-    # Embree traces the same rays; every ray is checked against the CPU reference, like the device's.
-    clpath_bench_quick_test(rays_quick_embree ${CLI_OUT}/rays-embree.csv "${RAYS_HEADER}" embree_mismatched 3
+    # Embree traces the same rays, in its default mode and robust; every ray is checked against the
+    # CPU reference, like the device's. Robust mode is watertight, as the reference: no mismatch.
+    clpath_bench_quick_test(rays_quick_embree ${CLI_OUT}/rays-embree.csv "${RAYS_HEADER}" embree_robust_mismatched 3
                             bench rays cornell --quick)
-    clpath_bench_quick_test(rays_quick_embree_room ${CLI_OUT}/rays-embree-room.csv "${RAYS_HEADER}" embree_mismatched 3
+    clpath_bench_quick_test(rays_quick_embree_room ${CLI_OUT}/rays-embree-room.csv "${RAYS_HEADER}" embree_robust_mismatched 3
                             bench rays room:3000 --quick)
+    # Each batch names both ratios, the default mode's first.
     clpath_cli_test(bench_rays_embree_ratio ARGS bench rays cornell --quick
-                    OUTPUT "shadow: 12288 rays .*\n  Embree: [0-9]+ hit, [0-9.]+ ms mean / [0-9.]+ ms best, [0-9.]+ Mrays/s, clpath/Embree [0-9.]+; CPU check: 12288 rays, [0-9.]+ % identical hits, [0-9]+ ties, [0-9]+ at the origin, 0 mismatched")
+                    OUTPUT "shadow: 12288 rays .*\n  Embree default mode: [0-9]+ hit, [0-9.]+ ms mean / [0-9.]+ ms best, [0-9.]+ Mrays/s, clpath/Embree [0-9.]+; CPU check: 12288 rays, [0-9.]+ % identical hits, [0-9]+ ties, [0-9]+ at the origin, [0-9]+ mismatched\n  Embree robust mode: [0-9]+ hit, [0-9.]+ ms mean / [0-9.]+ ms best, [0-9.]+ Mrays/s, clpath/Embree [0-9.]+; CPU check: 12288 rays, [0-9.]+ % identical hits, [0-9]+ ties, [0-9]+ at the origin, 0 mismatched")
+    set_tests_properties(cli.bench.rays_quick_embree cli.bench.rays_quick_embree_room cli.bench_rays_embree_ratio
+                         PROPERTIES LABELS cli)
 endif()
 
 clpath_cli_test(bench_build_reports ARGS bench build room:3000 --repeat 2 --threads 2 --csv ${CLI_OUT}/build.csv

@@ -49,6 +49,14 @@ foreach(integrator path path-bsdf ao normals depth albedo heatmap)
                                  -q -o ${OCLGRIND_LOGS}/render-${integrator}.pfm
                          OUTPUT "device=\"Oclgrind Simulator\" .*integrator=${integrator} .*nonfinite=0")
 endforeach()
+# The wavefront kernels (both light-transport integrators, every feature), with
+# the races between their work-items' queue appends checked.
+foreach(integrator path path-bsdf)
+    clpath_oclgrind_test(render.wavefront.${integrator} OPTIONS ${OCLGRIND_BASIC}
+                         COMMAND $<TARGET_FILE:clpath> render ${OCLGRIND_SCENE} --all-features -i ${integrator}
+                                 --kernel wavefront -q -o ${OCLGRIND_LOGS}/render-wavefront-${integrator}.pfm
+                         OUTPUT "device=\"Oclgrind Simulator\" .*integrator=${integrator} .*nonfinite=0 .*kernel=wavefront")
+endforeach()
 # Programs compiled with only the features a scene has, the flat object list,
 # uniform hemisphere sampling with the depth roulette rule.
 clpath_oclgrind_test(render.scene_features OPTIONS ${OCLGRIND_BASIC}

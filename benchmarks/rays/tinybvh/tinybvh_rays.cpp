@@ -11,6 +11,7 @@
 #include "tiny_bvh.h"
 
 #include "clpath_kernels.hpp"
+#include "obj_triangles.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -32,38 +33,6 @@ namespace {
 using namespace harness;
 using tinybvh::bvhvec3;
 using tinybvh::bvhvec4;
-
-// ---- the triangles: clpath export's OBJ (v and triangular f lines) --------
-
-std::vector<bvhvec4> read_obj(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw Fail(path + ": cannot open");
-    std::vector<bvhvec4> v, tris;
-    std::string line;
-    for (int n = 1; std::getline(in, line); ++n) {
-        std::istringstream ss(line);
-        std::string tag;
-        ss >> tag;
-        if (tag == "v") {
-            float x, y, z;
-            if (!(ss >> x >> y >> z)) throw Fail(path + ":" + std::to_string(n) + ": bad vertex");
-            v.push_back(bvhvec4(x, y, z, 0));
-        } else if (tag == "f") {
-            std::vector<long> idx;
-            std::string tok;
-            while (ss >> tok) idx.push_back(std::strtol(tok.c_str(), nullptr, 10));  // "a", "a/b", "a//c"
-            if (idx.size() != 3) throw Fail(path + ":" + std::to_string(n) + ": only triangles are read");
-            for (long i : idx) {
-                if (i < 1 || std::size_t(i) > v.size())
-                    throw Fail(path + ":" + std::to_string(n) + ": vertex index out of range");
-                tris.push_back(v[std::size_t(i) - 1]);
-            }
-        }
-    }
-    if (tris.empty()) throw Fail(path + ": no triangles");
-    return tris;
-}
-
 
 // Our kernels beside tinybvh's own batch kernels: tinybvh's traverse.cl has
 // occlusion functions for each layout but no batch kernel that calls them.
@@ -140,7 +109,7 @@ struct Options {
     int launches = 5;
     std::size_t workgroup = 64, triangles = 0;
     double tolerance = 1e-3;
-    bool hq = true;
+    std::vector<std::string> builds = {"hq", "fast"};  // tinybvh's BuildHQ and Build trees, each timed
     bool paired = false;
 };
 
@@ -298,7 +267,7 @@ void run(const Options& o) {
     std::printf("device: %s (%s)\nprogram: %s/traverse.cl + our occlusion kernels, options: %s\n", cl.name.c_str(),
                 device_info(cl.device, CL_DEVICE_VERSION).c_str(), o.tinybvh.c_str(), options.c_str());
 
-    std::vector<bvhvec4> tris = read_obj(o.obj);
+    std::vector<bvhvec4> tris = read_obj_triangles(o.obj);
     const std::uint32_t n = std::uint32_t(tris.size() / 3);
     std::printf("triangles: %u from %s\n", n, o.obj.c_str());
     if (o.triangles && o.triangles != n)
@@ -322,7 +291,10 @@ void run(const Options& o) {
                           "paired_clpath_differs\n");
     }
     // The structures are built one at a time, so only one is held at once.
+    // Each build's trees in turn (the summary counts the faster of the two per layout and batch).
+    for (const std::string& build : o.builds)
     for (const std::string& name : o.layouts) {
+        const bool hq = build == "hq";
         Layout L;
         L.name = name;
         auto t0 = std::chrono::steady_clock::now();
@@ -331,7 +303,7 @@ void run(const Options& o) {
         std::unique_ptr<tinybvh::BVH8_CWBVH> b8;
         if (name == "ailalaine") {
             b2 = std::make_unique<tinybvh::BVH_GPU>();
-            o.hq ? b2->BuildHQ(tris.data(), n) : b2->Build(tris.data(), n);
+            hq ? b2->BuildHQ(tris.data(), n) : b2->Build(tris.data(), n);
             L.structure = "BVH_GPU";
             L.data.push_back(std::make_unique<Mem>(cl, b2->usedNodes * sizeof(tinybvh::BVH_GPU::BVHNode), b2->bvhNode));
             L.data.push_back(std::make_unique<Mem>(cl, b2->idxCount * sizeof(std::uint32_t), b2->bvh.primIdx));
@@ -339,13 +311,13 @@ void run(const Options& o) {
             L.closest = "batch_ailalaine", L.occluded = "clp_occluded_ailalaine";
         } else if (name == "gpu4way") {
             b4 = std::make_unique<tinybvh::BVH4_GPU>();
-            o.hq ? b4->BuildHQ(tris.data(), n) : b4->Build(tris.data(), n);
+            hq ? b4->BuildHQ(tris.data(), n) : b4->Build(tris.data(), n);
             L.structure = "BVH4_GPU";
             L.data.push_back(std::make_unique<Mem>(cl, b4->usedBlocks * sizeof(bvhvec4), b4->bvh4Data));
             L.closest = "batch_gpu4way", L.occluded = "clp_occluded_gpu4way";
         } else if (name == "cwbvh") {
             b8 = std::make_unique<tinybvh::BVH8_CWBVH>();
-            o.hq ? b8->BuildHQ(tris.data(), n) : b8->Build(tris.data(), n);
+            hq ? b8->BuildHQ(tris.data(), n) : b8->Build(tris.data(), n);
             L.structure = "BVH8_CWBVH";
             L.data.push_back(std::make_unique<Mem>(cl, b8->usedBlocks * sizeof(bvhvec4), b8->bvh8Data));
             L.data.push_back(std::make_unique<Mem>(cl, b8->idxCount * 3 * sizeof(bvhvec4), b8->bvh8Tris));
@@ -354,7 +326,7 @@ void run(const Options& o) {
             throw Fail("unknown layout '" + name + "' (ailalaine, gpu4way, cwbvh)");
         }
         L.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        std::printf("%s (%s): %s in %.0f ms\n", L.structure.c_str(), name.c_str(), o.hq ? "BuildHQ" : "Build", L.build_ms);
+        std::printf("%s (%s): %s in %.0f ms\n", L.structure.c_str(), name.c_str(), hq ? "BuildHQ" : "Build", L.build_ms);
         std::fflush(stdout);
         b2.reset(), b4.reset(), b8.reset();  // the device holds its copy
 
@@ -420,7 +392,7 @@ void run(const Options& o) {
             if (csv) {
                 std::fprintf(csv, "%s,\"%s\",%u,tinybvh,%s,%s,%s,%.1f,%s,%zu,%zu,%zu,%d,%.4f,%.4f,%.4f,%.4f,%zu,%zu,%zu,%zu,%zu,%.3g",
                              o.label.c_str(), cl.name.c_str(), n, L.structure.c_str(), kname.c_str(),
-                             o.hq ? "BuildHQ" : "Build", L.build_ms, batch.c_str(), b.rays.size(), c.hits, o.workgroup,
+                             hq ? "BuildHQ" : "Build", L.build_ms, batch.c_str(), b.rays.size(), c.hits, o.workgroup,
                              o.launches, t.mean, t.median, t.best, mrays, c.mismatched, c.t_differs, c.only_clpath,
                              c.only_tinybvh, c.near_origin, c.max_rel_dt);
                 if (clpath)
@@ -444,7 +416,8 @@ const char* kUsage =
     "  --batches LIST    of primary, shadow, diffuse (default: all three)\n"
     "  --launches N      timed launches per batch after one warm-up (default 5)\n"
     "  --workgroup N     work-items per group (default 64, as clpath's and tinybvh's speed test)\n"
-    "  --build hq|fast   tinybvh's BuildHQ (spatial splits; what its speed test uses) or Build (default hq)\n"
+    "  --build LIST      of hq (tinybvh's BuildHQ: spatial splits, what its speed test uses) and fast (Build);\n"
+    "                    default hq,fast: both trees, each timed on every batch\n"
     "  --tolerance X     largest |t difference| / (t + max |origin|) counted as the same hit (default 1e-3)\n"
     "  --triangles N     fail unless the OBJ holds N triangles (the count clpath printed)\n"
     "  --device TEXT     the first OpenCL device whose name holds TEXT (default: the first device)\n"
@@ -486,7 +459,11 @@ int main(int argc, char** argv) {
             else if (a == "--batches") o.batches = split(v);
             else if (a == "--launches") o.launches = std::max(1, std::atoi(v.c_str()));
             else if (a == "--workgroup") o.workgroup = std::size_t(std::max(1, std::atoi(v.c_str())));
-            else if (a == "--build") o.hq = v != "fast";
+            else if (a == "--build") {
+                o.builds = split(v);
+                for (const auto& b : o.builds)
+                    if (b != "hq" && b != "fast") throw Fail("--build: '" + b + "' is neither hq nor fast");
+            }
             else if (a == "--tolerance") o.tolerance = std::atof(v.c_str());
             else if (a == "--triangles") o.triangles = std::size_t(std::atoll(v.c_str()));
             else if (a == "--device") o.device = v;

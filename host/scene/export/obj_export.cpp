@@ -35,6 +35,49 @@ std::string mtl_name(const std::string& name, std::set<std::string>& taken) {
 
 }  // namespace
 
+ObjMeshText obj_mesh_text(const Scene& scene, const std::string& stem, const std::string& source) {
+    std::vector<bool> used(scene.materials.size(), false);
+    for (auto m : scene.triangle_material) used.at(m) = true;
+    ObjMeshText m;
+    std::set<std::string> taken;
+    m.names.assign(scene.materials.size(), "");
+    std::vector<std::string>& names = m.names;
+    for (std::size_t i = 0; i < scene.materials.size(); ++i)
+        if (used[i]) names[i] = mtl_name(i < scene.material_names.size() ? scene.material_names[i] : "", taken);
+
+    m.mtl = "# clpath export of '" + scene.name + "': Lambertian reflectance Kd, emitted radiance Ke (W sr^-1 m^-2)\n";
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        if (!used[i]) continue;
+        const Material& mat = scene.materials[i];
+        m.mtl += "\nnewmtl " + names[i] + "\nKd " + vec(load3(mat.albedo)) + "\nKs 0 0 0\n";
+        if (emits(mat)) m.mtl += "Ke " + vec(load3(mat.emission)) + "\n";
+        m.mtl += "illum 1\n";
+    }
+
+    // Shared vertices (by exact value); faces keep their winding, so the
+    // front faces (and one-sided emitters) stay where they were.
+    m.obj = "# clpath export of '" + scene.name + "' from " + source + ": " + std::to_string(scene.triangle_count()) +
+            " triangles, counter-clockwise = front\nmtllib " + stem + ".mtl\n";
+    std::map<std::tuple<float, float, float>, std::size_t> index;
+    std::vector<std::size_t> corner(scene.vertices.size());
+    for (std::size_t v = 0; v < scene.vertices.size(); ++v) {
+        const glm::vec3 p = scene.vertices[v];
+        auto [it, added] = index.emplace(std::make_tuple(p.x, p.y, p.z), index.size() + 1);
+        if (added) m.obj += "v " + vec(p) + "\n";
+        corner[v] = it->second;
+    }
+    std::uint32_t current = ~0u;
+    for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
+        if (scene.triangle_material[t] != current) {
+            current = scene.triangle_material[t];
+            m.obj += "usemtl " + names[current] + "\n";
+        }
+        m.obj += "f " + std::to_string(corner[3 * t]) + " " + std::to_string(corner[3 * t + 1]) + " " +
+                 std::to_string(corner[3 * t + 2]) + "\n";
+    }
+    return m;
+}
+
 ObjExport export_obj_scene(const Scene& scene, const std::string& stem, const std::string& source) {
     // What Cycles would model differently is refused, so that a reference
     // rendered from the export is a reference for this very scene.
@@ -57,43 +100,11 @@ ObjExport export_obj_scene(const Scene& scene, const std::string& stem, const st
         throw Error("the scene's environment is an image: only a constant environment colour is exported");
     if (scene.triangle_count() == 0) throw Error("the scene has no triangles");
 
+    const ObjMeshText mesh = obj_mesh_text(scene, stem, source);
+    const std::vector<std::string>& names = mesh.names;
     ObjExport out;
-    std::set<std::string> taken;
-    std::vector<std::string> names(scene.materials.size());
-    for (std::size_t i = 0; i < scene.materials.size(); ++i)
-        if (used[i]) names[i] = mtl_name(i < scene.material_names.size() ? scene.material_names[i] : "", taken);
-
-    out.mtl = "# clpath export of '" + scene.name + "': Lambertian reflectance Kd, emitted radiance Ke (W sr^-1 m^-2)\n";
-    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-        if (!used[i]) continue;
-        const Material& m = scene.materials[i];
-        out.mtl += "\nnewmtl " + names[i] + "\nKd " + vec(load3(m.albedo)) + "\nKs 0 0 0\n";
-        if (emits(m)) out.mtl += "Ke " + vec(load3(m.emission)) + "\n";
-        out.mtl += "illum 1\n";
-    }
-
-    // Shared vertices (by exact value); faces keep their winding, so the
-    // front faces (and one-sided emitters) stay where they were.
-    out.obj = "# clpath export of '" + scene.name + "' from " + source + ": " + std::to_string(scene.triangle_count()) +
-              " triangles, counter-clockwise = front\nmtllib " + stem + ".mtl\n";
-    std::map<std::tuple<float, float, float>, std::size_t> index;
-    std::vector<std::size_t> corner(scene.vertices.size());
-    std::string faces;
-    for (std::size_t v = 0; v < scene.vertices.size(); ++v) {
-        const glm::vec3 p = scene.vertices[v];
-        auto [it, added] = index.emplace(std::make_tuple(p.x, p.y, p.z), index.size() + 1);
-        if (added) out.obj += "v " + vec(p) + "\n";
-        corner[v] = it->second;
-    }
-    std::uint32_t current = ~0u;
-    for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
-        if (scene.triangle_material[t] != current) {
-            current = scene.triangle_material[t];
-            out.obj += "usemtl " + names[current] + "\n";
-        }
-        out.obj += "f " + std::to_string(corner[3 * t]) + " " + std::to_string(corner[3 * t + 1]) + " " +
-                   std::to_string(corner[3 * t + 2]) + "\n";
-    }
+    out.obj = mesh.obj;
+    out.mtl = mesh.mtl;
 
     // The scene file: MTL has no two-sided emission, so those materials are
     // given here and mapped onto the mesh by name.

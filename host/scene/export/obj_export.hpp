@@ -6,6 +6,7 @@
 // benchmarks/references/cycles_reference.py) reads the three to render the
 // same image; `clpath render` reads the JSON back.
 #include <string>
+#include <vector>
 
 #include "scene/scene.hpp"
 
@@ -14,6 +15,16 @@ namespace clpath {
 struct ObjExport {
     std::string obj, mtl, json;
 };
+
+// The mesh as OBJ (shared vertices, the faces' winding kept) and its MTL
+// (Kd reflectance, Ke radiance), whatever the materials are: the exporters
+// below refuse first what their readers would model differently. names: the
+// MTL name of each scene material the mesh uses ("" for the others).
+struct ObjMeshText {
+    std::string obj, mtl;
+    std::vector<std::string> names;
+};
+ObjMeshText obj_mesh_text(const Scene& scene, const std::string& stem, const std::string& source);
 
 // stem: the file name the three share, without folder or extension (the OBJ
 // names stem.mtl, the JSON stem.obj). Throws clpath::Error naming what another
