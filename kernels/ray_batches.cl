@@ -1,6 +1,7 @@
 /* The ray-batch benchmark (clpath bench rays, host/bench/ray_batches.cpp):
  * kernels that make the rays (not timed) and kernels that trace a batch
- * (timed), one ray per work-item, through the same traverse_bvh() the
+ * (timed), one ray per work-item, through the same walks (accel_closest_hit,
+ * accel_any_hit: traverse.cl) the
  * integrator uses (the BVH, or the flat list with -DCLP_ACCEL_FLAT). */
 #ifndef CLP_RAY_BATCHES_CL
 #define CLP_RAY_BATCHES_CL
@@ -86,7 +87,7 @@ kernel void batch_trace_closest(global const AccelNode* nodes, global const TriV
     global const BatchRay* r = &rays[i];
     RayPre rp = ray_prepare(load3g(r->o), load3g(r->d));
     Hit h;
-    traverse_bvh(&h, nodes, tris, &rp, r->tmax, 0, 0);
+    accel_closest_hit(&h, nodes, tris, &rp, r->tmax, 0);
     hits[i] = h;
 }
 
@@ -97,7 +98,7 @@ kernel void batch_trace_any(global const AccelNode* nodes, global const TriVerts
     global const BatchRay* r = &rays[i];
     RayPre rp = ray_prepare(load3g(r->o), load3g(r->d));
     Hit h;
-    traverse_bvh(&h, nodes, tris, &rp, r->tmax, 1, 0);
+    accel_any_hit(&h, nodes, tris, &rp, r->tmax, 0);
     occluder[i] = h.tri;
 }
 

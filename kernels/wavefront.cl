@@ -157,14 +157,19 @@ kernel void wf_shadow(CLP_SCENE_PARAMS constant const FrameParams* fp, global fl
         sh.o = o.xyz;
         sh.tmax = o.w;
         sh.d = d.xyz;
-        sh.beta = shadows[CLP_WF_SROW_BETA * capacity + k].xyz;
-        sh.v = shadows[CLP_WF_SROW_V * capacity + k].xyz;
         sh.active = 1;
-        uint slot = as_uint(d.w);
-        float4 l = paths[CLP_WF_ROW_L * capacity + slot];
-        float3 L = l.xyz;
-        path_shadow_done(&L, &sh, occluded(&sc, sh.o, sh.d, sh.tmax, &rays));
-        paths[CLP_WF_ROW_L * capacity + slot] = (float4)(L, l.w);
+        /* The contribution and the path's radiance are read only once the
+         * light is found unoccluded, so that the walk keeps nothing else
+         * live (read before it, they took 70 registers at sm_90). */
+        if (!occluded(&sc, sh.o, sh.d, sh.tmax, &rays)) {
+            sh.beta = shadows[CLP_WF_SROW_BETA * capacity + k].xyz;
+            sh.v = shadows[CLP_WF_SROW_V * capacity + k].xyz;
+            uint slot = as_uint(d.w);
+            float4 l = paths[CLP_WF_ROW_L * capacity + slot];
+            float3 L = l.xyz;
+            path_shadow_done(&L, &sh, 0);
+            paths[CLP_WF_ROW_L * capacity + slot] = (float4)(L, l.w);
+        }
     }
     wf_count(&group_rays, rays, &counters->rays);
 }

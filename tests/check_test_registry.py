@@ -16,7 +16,7 @@ import re
 import subprocess
 import sys
 
-LABELS = {"unit", "render", "robustness", "cli", "viewer", "oclgrind", "fuzz", "slow"}
+LABELS = {"unit", "render", "robustness", "cli", "viewer", "oclgrind", "gpu-portability", "fuzz", "slow"}
 
 
 def main():

@@ -18,11 +18,11 @@ CLPATH=$B/clpath
 OUT=$ROOT/benchmarks/results/gpu-compile
 JOBS=${JOBS:-$(nproc)}
 mkdir -p "$OUT"
-SCENES=$(cd "$ROOT" && find scenes -name '*.json' | sort | sed "s|^|$ROOT/|")
+SCENES=$(cd "$ROOT" && find scenes -name '*.json' -o -name '*.gltf' | sort | sed "s|^|$ROOT/|")
 LOG=$OUT/log.txt
 {
   echo "== date: $(date -u +%FT%TZ)  commit: $(git -C "$ROOT" rev-parse --short HEAD)$(git -C "$ROOT" diff --quiet HEAD -- kernels host || echo ' (with uncommitted changes)')"
-  echo "== clpath kernels --report --covering cornell <every scenes/**/*.json> --jobs $JOBS"
+  echo "== clpath kernels --report --covering cornell <every scenes/**/*.json and *.gltf> --jobs $JOBS"
 } > "$LOG"
 # shellcheck disable=SC2086
 "$CLPATH" kernels --report --covering cornell $SCENES --jobs "$JOBS" --csv "$OUT/resources.csv" \

@@ -69,7 +69,8 @@ def main():
         "`clpath kernels --report` (`benchmarks/gpu-compile/run.sh`): the covering set of\n"
         "`host/render/kernel_programs.hpp` (every integrator with every feature, alpha on and off; each\n"
         "feature alone; every feature but one; the flat structure, uniform hemisphere, BSDF-only\n"
-        "sampling; both ray-batch programs) and the programs of `cornell` and every bundled scene.\n"
+        "sampling; the wavefront of path and path-bsdf; both ray-batch programs) and the programs of\n"
+        "`cornell` and every bundled scene (megakernel and wavefront).\n"
         "NVIDIA: clang-14 (nvptx64-nvidia-nvcl) + libclc + opt/llc 14 + the CUDA toolkit's `ptxas -arch=sm_90 -v`;\n"
         "AMD: clang/llc 14 (gfx90a) and 15 (gfx1100, which LLVM 14 lacks) with libclc 14's amdgcn bitcode,\n"
         "figures from the kernel descriptors. `clpath kernels --dump DIR` writes each program's source and\n"
@@ -109,7 +110,24 @@ def main():
         ("ray batches, flat list", prog("rays-flat"), "batch_trace_closest"),
         ("ray batches, flat list", prog("rays-flat"), "batch_trace_any"),
     ])
-    table("The megakernel (no budget; a wavefront integrator is to come)", [
+    wf = lambda text: (lambda rows, k, t: selected(rows, text, k, t))
+    specs = [("Cornell box", wf("scene cornell, wavefront"), k)
+             for k in ("wf_camera", "wf_trace", "wf_shade", "wf_shadow", "wf_next_bounce", "wf_accumulate")]
+    specs += [
+        ("Suzanne (glTF materials: budget 96)", wf("scene Suzanne, wavefront"), "wf_shade"),
+        ("path, every feature (glTF included)", prog("wf-path-all"), "wf_shade"),
+        ("path, every feature and alpha", prog("wf-path-all-alpha"), "wf_shade"),
+        ("path, every feature and alpha", prog("wf-path-all-alpha"), "wf_trace"),
+        ("path, every feature and alpha", prog("wf-path-all-alpha"), "wf_shadow"),
+        ("path-bsdf, every feature", prog("wf-path-bsdf-all"), "wf_shade"),
+        ("path, diffuse alone", prog("wf-path-diffuse"), "wf_shade"),
+        ("path, flat list, every feature", prog("wf-path-flat-all"), "wf_trace"),
+    ]
+    specs += [("the most registers of any program", lambda rows, k, t: largest(rows, k, t, "registers"), k)
+              for k in ("wf_trace", "wf_shade", "wf_shadow")]
+    table("Wavefront kernels (budget at sm_90: 64 registers, 256 B stack; wf_shade with glTF materials 96)",
+          specs)
+    table("The megakernel (no budget; on GPUs the wavefront renders path and path-bsdf by default)", [
         ("Cornell box's features (diffuse, emission, triangle lights)",
          lambda rows, k, t: selected(rows, "scene cornell", k, t), "render_paths"),
         ("path, every feature", prog("path-all"), "render_paths"),
@@ -118,6 +136,15 @@ def main():
         ("the most stack of any program", lambda rows, k, t: largest(rows, k, t, "stack_bytes"), "render_paths"),
         ("film resolve", prog("path-all"), "film_resolve"),
     ])
+    over = re.findall(r"clpath: over budget: ([^\n]*)", log)
+    out("## Over budget\n\n")
+    if over:
+        out(f"{len(over)} kernel figures over their sm_90 budget (`clpath kernels --check` fails on each):\n\n")
+        for line in over:
+            out(f"- {line}\n")
+    else:
+        out("None: every budgeted kernel is within its sm_90 budget.\n")
+    out("\n")
     out("## Every program\n\n")
     for name, rows in (("now", after),) + ((a.before_label, before),) if before else (("now", after),):
         programs = {r["program"] for r in rows}

@@ -7,7 +7,7 @@
 # missing) where its target's tools are not installed, never passed without
 # compiling. One test per target, so ctest spreads them; results are cached in
 # the build folder per source, options, target and tools.
-file(GLOB_RECURSE CLPATH_BUNDLED_SCENES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/scenes/*.json)
+file(GLOB_RECURSE CLPATH_BUNDLED_SCENES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/scenes/*.json ${CMAKE_SOURCE_DIR}/scenes/*.gltf)
 set(GPU_COMPILE_CACHE ${CMAKE_BINARY_DIR}/gpu-compile-cache)
 foreach(target sm_90 gfx90a gfx1100)
     add_test(NAME gpu_portability.${target}
@@ -47,12 +47,18 @@ endforeach()
 # its double-precision CPU traversal) and the same image (bench render-ab; a
 # scene with every material, light and environment kind, and the textured
 # scene with its alpha-masked fence).
-add_test(NAME kernel_code.gpu_on_pocl_bench_rays
-         COMMAND $<TARGET_FILE:clpath> bench rays ${CMAKE_SOURCE_DIR}/scenes/bunny.json --quick --no-embree
-                 --ab-options=-DCLP_TARGET_GPU)
-set_tests_properties(kernel_code.gpu_on_pocl_bench_rays PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}"
-    LABELS "render" TIMEOUT 600 PASS_REGULAR_EXPRESSION
-    "primary: [0-9]+ rays [^\n]* 0 mismatched[^\n]*\n  A/B: [^\n]*answers differ for 0 rays\nshadow: [0-9]+ rays [^\n]* 0 mismatched[^\n]*\n  A/B: [^\n]*answers differ for 0 rays\ndiffuse: [0-9]+ rays [^\n]* 0 mismatched[^\n]*\n  A/B: [^\n]*answers differ for 0 rays")
+# (The flat list of object boxes on the Cornell box: on bunny's one object it
+# would test every triangle for every ray.)
+foreach(accel_scene bvh:${CMAKE_SOURCE_DIR}/scenes/bunny.json flat:cornell)
+    string(REGEX REPLACE ":.*" "" accel ${accel_scene})
+    string(REGEX REPLACE "^[a-z]+:" "" scene ${accel_scene})
+    add_test(NAME kernel_code.gpu_on_pocl_bench_rays.${accel}
+             COMMAND $<TARGET_FILE:clpath> bench rays ${scene} --accel ${accel} --quick --no-embree
+                     --ab-options=-DCLP_TARGET_GPU)
+    set_tests_properties(kernel_code.gpu_on_pocl_bench_rays.${accel} PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}"
+        LABELS "render" TIMEOUT 600 PASS_REGULAR_EXPRESSION
+        "primary: [0-9]+ rays [^\n]* 0 mismatched[^\n]*\n  A/B: [^\n]*answers differ for 0 rays\nshadow: [0-9]+ rays [^\n]* 0 mismatched[^\n]*\n  A/B: [^\n]*answers differ for 0 rays\ndiffuse: [0-9]+ rays [^\n]* 0 mismatched[^\n]*\n  A/B: [^\n]*answers differ for 0 rays")
+endforeach()
 foreach(scene kernels/data/oclgrind-features.json ../scenes/textured/textured.json)
     get_filename_component(name ${scene} NAME_WE)
     add_test(NAME kernel_code.gpu_on_pocl_render.${name}
@@ -60,6 +66,13 @@ foreach(scene kernels/data/oclgrind-features.json ../scenes/textured/textured.js
                      --height 24 --ab-options=-DCLP_TARGET_GPU)
     set_tests_properties(kernel_code.gpu_on_pocl_render.${name} PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}"
                          LABELS "render" TIMEOUT 600 PASS_REGULAR_EXPRESSION "images differ in 0 of 768 pixels")
+    # The wavefront in GPU code, as GPUs run it, against the megakernel in CPU code.
+    add_test(NAME kernel_code.gpu_wavefront_on_pocl_render.${name}
+             COMMAND $<TARGET_FILE:clpath> bench render-ab ${CMAKE_CURRENT_SOURCE_DIR}/${scene} --spp 2 --width 32
+                     --height 24 --ab-shape wavefront --ab-options=-DCLP_TARGET_GPU)
+    set_tests_properties(kernel_code.gpu_wavefront_on_pocl_render.${name} PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}"
+                         LABELS "render" TIMEOUT 600 PASS_REGULAR_EXPRESSION
+                         "variant \\(wavefront\\)[^\n]*images differ in 0 of 768 pixels")
 endforeach()
 if(OCLGRIND)
     foreach(integrator path ao)
