@@ -52,12 +52,20 @@ struct KernelBudget {
     int max_stack_bytes;
     const char* with_option;     // applies only to programs built with this option (nullptr: any)
     const char* without_option;  // applies only to programs built without it (nullptr: any)
+    // A kernel not yet within its budget is held at the figures it has today:
+    // between the budget and these it is reported as an open shortfall (every
+    // run lists it), over these it fails like any kernel over budget. Zero:
+    // the budget itself is the limit.
+    int held_registers = 0;
+    int held_stack_bytes = 0;
 };
 const std::vector<KernelBudget>& kernel_budgets();
 
 // "program kernel target: 95 registers > 64" lines for every kernel over its
 // budget (programs compiled as GPU code only).
 std::vector<std::string> budget_violations(const std::vector<ProgramCompile>& compiles);
+// The same lines for kernels over their budget but within the figures they are held at.
+std::vector<std::string> budget_shortfalls(const std::vector<ProgramCompile>& compiles);
 
 // The rows as CSV (program,kernel,target,registers,sgprs,stack_bytes,spills,options,selected_by;
 // a failed compile has kernel FAILED)
