@@ -54,7 +54,10 @@ clpath_cli_test(bench_rays_ab_options ARGS bench rays cornell --quick --no-embre
 # bench render-ab: the renderer's kernels against a variant (an unchanged copy: the same image).
 clpath_cli_test(bench_render_ab ARGS bench render-ab cornell --quick --ab-kernels ${AB_KERNELS}
                 OUTPUT "A/B: variant/built-in [0-9.]+ \\(quartiles [0-9.]+-[0-9.]+\\) over 2 launch pairs; built-in [0-9.]+ Msamples/s, variant [0-9.]+; images differ in 0 of 768 pixels")
+# The two kernel shapes side by side: the same image (a ';' would split the pattern: '.' stands for it).
+clpath_cli_test(bench_render_ab_shapes ARGS bench render-ab cornell --quick --ab-shape wavefront
+                OUTPUT "over 2 launch pairs. built-in \\(mega\\) [0-9.]+ Msamples/s, variant \\(wavefront\\) [0-9.]+. images differ in 0 of 768 pixels")
 clpath_cli_test(bench_render_ab_no_variant FAIL ARGS bench render-ab cornell --spp 1
-                OUTPUT "bench render-ab: give the variant: --ab-kernels DIR, --ab-options OPTS or both")
+                OUTPUT "bench render-ab: give the variant: --ab-kernels DIR, --ab-options OPTS, --ab-shape SHAPE or several")
 clpath_cli_test(bench_render_ab_missing_folder FAIL ARGS bench render-ab cornell --spp 1 --ab-kernels ${CLI_OUT}/no-such-kernels
                 OUTPUT "--ab-kernels .*no-such-kernels: no such folder")

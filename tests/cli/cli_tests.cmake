@@ -144,7 +144,7 @@ clpath_cli_test(export.mitsuba ARGS export ${CMAKE_SOURCE_DIR}/scenes/cornell-th
                 ${CLI_OUT}/thesis-mitsuba.json --format mitsuba --width 32 --height 26
                 OUTPUT "wrote .*thesis-mitsuba.json and 7 meshes: Mitsuba 3, 196 triangles, 32x26, max depth 16")
 clpath_cli_test(export.unknown_format FAIL ARGS export ${CMAKE_SOURCE_DIR}/scenes/cornell-thesis.json
-                ${CLI_OUT}/thesis-pbrt.json --format pbrt OUTPUT "--format: pbrt not in \\{obj,mitsuba\\}"
+                ${CLI_OUT}/thesis-pbrt.json --format pbrt OUTPUT "--format: pbrt not in \\{obj,mitsuba,embree\\}"
                 FORBID ${CLI_OUT}/thesis-pbrt.json)
 
 # glTF: a model renders from the command line; a broken one names its glTF path and writes nothing.
