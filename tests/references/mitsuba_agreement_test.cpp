@@ -37,6 +37,7 @@
 #include <ostream>
 
 #include "scene/load/scene_loader.hpp"
+#include "support/repo_root.hpp"
 #include "support/image_agreement.hpp"
 #include "support/render_runs.hpp"
 #include "support/statistics.hpp"
@@ -46,13 +47,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path repo_root() {
-    for (fs::path p = fs::current_path(); !p.empty(); p = p.parent_path()) {
-        if (fs::is_directory(p / "benchmarks" / "references" / "mitsuba")) return p;
-        if (p == p.parent_path()) break;
-    }
-    return {};
-}
+using test::repo_root;
 
 constexpr double kRefSamples = 16 * 256;  // make_mitsuba_references.sh: 16 seeds x 256 spp
 constexpr double kRefDof = 16 - 1;

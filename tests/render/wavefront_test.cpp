@@ -13,6 +13,7 @@
 
 #include "scene/load/scene_loader.hpp"
 #include "util/error.hpp"
+#include "support/repo_root.hpp"
 #include "support/render_helpers.hpp"
 
 using namespace clpath;
@@ -20,13 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path repo_root() {
-    for (fs::path p = fs::current_path(); !p.empty(); p = p.parent_path()) {
-        if (fs::is_directory(p / "scenes" / "hard")) return p;
-        if (p == p.parent_path()) break;
-    }
-    return {};
-}
+using test::repo_root;
 
 // Every scene file shipped in scenes/ (JSON and the glTF model).
 std::vector<std::string> bundled_scenes() {

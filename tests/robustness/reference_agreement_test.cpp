@@ -34,6 +34,7 @@
 #include "render/kernel_features.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/load/scene_loader.hpp"
+#include "support/repo_root.hpp"
 #include "support/analytic_scenes.hpp"
 #include "support/image_agreement.hpp"
 #include "support/render_runs.hpp"
@@ -43,13 +44,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path repo_root() {
-    for (fs::path p = fs::current_path(); !p.empty(); p = p.parent_path()) {
-        if (fs::is_directory(p / "scenes" / "hard")) return p;
-        if (p == p.parent_path()) break;
-    }
-    return {};
-}
+using test::repo_root;
 
 // How a reference is obtained, given the scene and clpath's own runs.
 using MakeReference = std::function<test::Reference(const Scene&, const std::vector<Image>& runs, std::uint32_t spp)>;
