@@ -13,13 +13,14 @@ fi
 # libembree-dev: the CPU baselines of clpath bench rays and bench path (optional at build time).
 # libopenmpi-dev, openmpi-bin: rendering over MPI ranks (optional at build
 # time, but the test suite checks it).
+# libxxhash-dev: the checksum of checkpoint files (xxHash's XXH3).
 # oclgrind: a second OpenCL implementation, a simulator that checks every kernel
 # for out-of-bounds and uninitialised accesses and data races (tests/kernels/).
 packages="
     build-essential cmake pkg-config clang libclang-rt-14-dev
     pocl-opencl-icd ocl-icd-opencl-dev opencl-headers clinfo oclgrind
     libglm-dev libglfw3-dev libopenimageio-dev openimageio-tools
-    libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libgtest-dev
+    libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libgtest-dev libxxhash-dev
     xvfb xauth libimgui-dev glmark2-data
     python3-numpy python3-matplotlib
     libembree-dev

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "image/image.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -91,6 +92,12 @@ Environment parse_env_option(const std::string& text) {
         throw UsageError("--env " + text + ": " +
                          (looks_numeric ? std::string("expected a colour R,G,B or one grey value (finite, from 0 to 1000000)")
                                         : "no such file (give an equirectangular .hdr or .exr image, or a colour R,G,B)"));
+    }
+    // Not an image (or one with too few channels): bad usage, named now rather than when the render starts.
+    try {
+        check_image_readable(text);
+    } catch (const Error& e) {
+        throw UsageError("--env " + text + ": " + e.what());
     }
     env.image = text;
     return env;
