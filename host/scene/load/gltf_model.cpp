@@ -11,6 +11,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
 
+#include "scene/load/gltf_document.hpp"
 #include "scene/load/gltf_parts.hpp"
 #include "scene/load/gltf_support.hpp"
 #include "util/error.hpp"
@@ -26,113 +27,11 @@ constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
 constexpr int kUByte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
 constexpr int kUShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
 constexpr int kUInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-constexpr std::size_t kMaxNodeDepth = 256;
 
 std::string lower_extension(const std::string& file) {
     std::string e = fs::path(file).extension().string();
     std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return e;
-}
-
-// %XX escapes in a URI, as the glTF specification allows in relative paths.
-std::string percent_decode(const std::string& s, bool& ok) {
-    std::string out;
-    ok = true;
-    for (std::size_t i = 0; i < s.size(); ++i) {
-        if (s[i] != '%') {
-            out += s[i];
-            continue;
-        }
-        if (i + 2 >= s.size() || !std::isxdigit(static_cast<unsigned char>(s[i + 1])) ||
-            !std::isxdigit(static_cast<unsigned char>(s[i + 2]))) {
-            ok = false;
-            return s;
-        }
-        out += char(std::stoi(s.substr(i + 1, 2), nullptr, 16));
-        i += 2;
-    }
-    return out;
-}
-
-// The files of one load, for tinygltf's file-system callbacks: everything is
-// read through LoadOptions::read_file, so tests and fuzzers work from memory.
-// Decoded data URIs are served under their stand-in names (gltf::extract_data_uris).
-struct Files {
-    const LoadOptions* options;
-    std::string last_error;
-    gltf::DataUris* data_uris = nullptr;
-};
-
-bool fs_exists(const std::string& path, void* user) {
-    auto* f = static_cast<Files*>(user);
-    if (f->data_uris && gltf::find_data_uri(*f->data_uris, path)) return true;
-    if (f->options->file_exists) return f->options->file_exists(path);
-    std::error_code ec;
-    return fs::is_regular_file(path, ec);
-}
-std::string fs_expand(const std::string& path, void*) { return path; }
-bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
-    auto* f = static_cast<Files*>(user);
-    if (f->data_uris)
-        if (auto* bytes = gltf::find_data_uri(*f->data_uris, path)) {
-            *out = std::move(*bytes);  // read once, by the one buffer that names it
-            return true;
-        }
-    try {
-        const std::string s = f->options->read_file(path);
-        out->assign(s.begin(), s.end());
-        return true;
-    } catch (const Error& e) {
-        f->last_error = e.what();
-        if (err) *err += e.what();
-        return false;
-    }
-}
-bool fs_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
-    if (err) *err += "writing is not supported";
-    return false;
-}
-
-// Images are kept encoded here and decoded (through OpenImageIO) only when a
-// material uses them, with a message that names the use.
-bool keep_encoded(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
-                  int size, void*) {
-    image->image.assign(bytes, bytes + size);
-    image->as_is = true;
-    return true;
-}
-
-// The external files a .gltf names, checked before tinygltf reads them, so
-// that a missing buffer or image, or a URI that is not a relative path or a
-// base64 data URI, is reported by its glTF path.
-void check_uris(const std::string& text, const std::string& file, const LoadOptions& options, gltf::DataUris& uris) {
-    nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
-    if (doc.is_discarded() || !doc.is_object()) return;  // tinygltf reports the syntax error
-    const fs::path dir = fs::path(file).parent_path();
-    for (const char* section : {"buffers", "images"}) {
-        auto it = doc.find(section);
-        if (it == doc.end() || !it->is_array()) continue;
-        for (std::size_t i = 0; i < it->size(); ++i) {
-            const auto& e = (*it)[i];
-            if (!e.is_object() || !e.contains("uri") || !e["uri"].is_string()) continue;
-            const std::string uri = e["uri"].get<std::string>();
-            const std::string path = std::string(section) + "[" + std::to_string(i) + "].uri";
-            auto fail = [&](const std::string& what) { throw Error(file + ": " + path + ": " + what); };
-            if (uri.rfind("data:", 0) == 0) {
-                if (uri.find(";base64,") == std::string::npos) fail("a data URI must be base64 (data:...;base64,...)");
-                continue;
-            }
-            const auto colon = uri.find(':');
-            if (uri.empty() || (colon != std::string::npos && colon < uri.find('/')) || uri[0] == '/')
-                fail("'" + uri.substr(0, 80) + "' is not a relative file path or a data URI");
-            bool ok;
-            const std::string name = percent_decode(uri, ok);
-            if (!ok) fail("'" + uri.substr(0, 80) + "' has a bad %-escape");
-            const std::string full = (dir / name).lexically_normal().string();
-            Files f{&options, {}, &uris};
-            if (!fs_exists(full, &f)) fail(full + ": no such file");
-        }
-    }
 }
 
 glm::mat4 node_matrix(const tinygltf::Node& n) {
@@ -324,30 +223,37 @@ GltfModel read_gltf(const std::string& bytes, const std::string& file, const Loa
 }  // namespace
 
 GltfModel load_gltf(const std::string& file, const LoadOptions& options) {
-    const std::string bytes = options.read_file(file);
-    try {
-        return read_gltf(bytes, file, options);
-    } catch (const Error&) {
-        gltf::refuse_unsupported(bytes, file);  // when that is the cause, it is named instead
-        throw;
-    }
+    return read_gltf(options.read_file(file), file, options);
 }
 
 namespace {
 GltfModel read_gltf(const std::string& bytes, const std::string& file, const LoadOptions& options) {
+    if (bytes.size() > 0xffffffffu) throw Error(file + ": larger than 4 GiB");
     const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
     gltf::DataUris data_uris;
     const std::string text = binary ? std::string() : gltf::extract_data_uris(bytes, data_uris);
-    if (!binary) check_uris(text, file, options, data_uris);
+    const std::string_view json_text = binary ? gltf::glb_json_chunk(bytes, file) : std::string_view(text);
+    // Everything tinygltf would take on trust is checked on the raw document
+    // first; one that does not parse is left to tinygltf to report.
+    gltf::check_json_depth(json_text, file);
+    GltfModel out;
+    {
+        const nlohmann::json doc = nlohmann::json::parse(json_text.begin(), json_text.end(), nullptr, false);
+        if (!doc.is_discarded()) {
+            out.warnings = gltf::check_version_and_extensions(doc, file);
+            gltf::check_document(doc, file);
+            gltf::check_node_hierarchy(doc, file, options.max_placed_nodes);
+            gltf::check_uris(doc, file, options, data_uris);
+        }
+    }
 
     tinygltf::TinyGLTF loader;
-    Files files{&options, {}, &data_uris};
-    loader.SetFsCallbacks({fs_exists, fs_expand, fs_read, fs_write, &files});
-    loader.SetImageLoader(keep_encoded, nullptr);
+    gltf::Files files{&options, {}, &data_uris};
+    loader.SetFsCallbacks(gltf::file_callbacks(files));
+    loader.SetImageLoader(gltf::keep_encoded, nullptr);
     tinygltf::Model model;
     std::string err, warn;
     const std::string dir = fs::path(file).parent_path().string();
-    if (bytes.size() > 0xffffffffu) throw Error(file + ": larger than 4 GiB");
     const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
                                                          unsigned(bytes.size()), dir)
                            : loader.LoadASCIIFromString(&model, &err, &warn, text.data(), unsigned(text.size()), dir);
@@ -357,8 +263,6 @@ GltfModel read_gltf(const std::string& bytes, const std::string& file, const Loa
         throw Error(file + ": not a valid glTF 2.0 file: " + (what.empty() ? "unknown error" : what));
     }
     const Source src{model, file, options};
-    GltfModel out;
-    out.warnings = gltf::refuse_unsupported(model.asset.version, model.extensionsRequired, file);
 
     gltf::read_materials(src, out);
 
@@ -379,7 +283,8 @@ GltfModel read_gltf(const std::string& bytes, const std::string& file, const Loa
             if (ni < 0 || std::size_t(ni) >= model.nodes.size())
                 src.fail(from, "node " + std::to_string(ni) + " does not exist (the file has " +
                                    std::to_string(model.nodes.size()) + ")");
-            if (depth > kMaxNodeDepth) src.fail(path, "the node hierarchy is deeper than " + std::to_string(kMaxNodeDepth));
+            if (depth > gltf::kMaxNodeDepth)
+                src.fail(path, "the node hierarchy is deeper than " + std::to_string(gltf::kMaxNodeDepth));
             if (depth_of[std::size_t(ni)] >= 0) src.fail(path, "the node is its own ancestor (a cycle)");
             depth_of[std::size_t(ni)] = int(depth);
             const tinygltf::Node& n = model.nodes[std::size_t(ni)];

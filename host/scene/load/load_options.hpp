@@ -23,6 +23,12 @@ struct LoadOptions {
     // A scene with more triangles is refused before it is built: a bound on
     // memory for the loader, and far beyond what a device holds today.
     std::size_t max_triangles = 50'000'000;
+    // The most nodes a glTF file's node hierarchy may place, counting a node
+    // once per path that reaches it (a child listed by several parents, or
+    // twice by one, is placed once for each): a bound on the walk's work and
+    // memory, refused before the walk. Mesh instances are placed nodes, so it
+    // bounds them too.
+    std::size_t max_placed_nodes = 1'000'000;
     // Turns a texture file's bytes into texels (OpenImageIO); fuzzers swap in their own.
     std::function<TextureImage(const std::string& bytes, const std::string& name)> decode_texture = clpath::decode_texture;
     // Which camera of a glTF file to use: its name, or its index in the
