@@ -257,14 +257,16 @@ typedef struct {
 
 /* Pinhole camera, already turned into a ray basis by the host:
  * direction(x_ndc, y_ndc) = forward + x_ndc * right + y_ndc * up,
- * where right and up are scaled by tan(fov/2) of their axis. */
+ * where right and up are scaled by tan(fov/2) of their axis. Orthographic
+ * (orthographic != 0): every ray has direction forward and starts at
+ * eye + x_ndc * right + y_ndc * up, right and up scaled by the half-extents. */
 typedef struct {
     float eye[3];
     uint width;
     float forward[3];
     uint height;
     float right[3];
-    float pad0;
+    uint orthographic;
     float up[3];
     float pad1;
 } CameraData;

@@ -44,6 +44,7 @@ glm::vec3 parse_vec3(const std::string& option, const std::string& field, const 
 
 Camera apply_camera_option(const std::string& text, Camera cam) {
     const std::string opt = "--camera";
+    cam.ortho_half_height = 0;  // --camera gives a pinhole camera, also in place of a file's orthographic one
     if (text.empty()) throw UsageError(opt + " is empty; expected from=x,y,z;to=x,y,z;fov=degrees;up=x,y,z");
     for (const auto& item : split(text, ';')) {
         if (item.empty()) continue;  // a trailing ';'

@@ -17,6 +17,10 @@ struct Camera {
     glm::vec3 up{0, 1, 0};
     float vfov_degrees = 45.0f;
     int width = 640, height = 480;
+    // Above 0: an orthographic camera whose view is this tall (half the
+    // height, in scene units; the width follows the image's aspect), and
+    // vfov_degrees is not used.
+    float ortho_half_height = 0;
 };
 
 // The ray basis the kernels read (kernels/camera.cl). Right is forward x up,

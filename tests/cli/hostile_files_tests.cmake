@@ -30,3 +30,21 @@ clpath_usage_test(gltf_aspect_ratio_negative RC 1 ARGS render ${HOSTILE}/aspect-
                   OUTPUT "^clpath: error: .*aspect-ratio-negative\\.gltf: cameras\\[0\\]\\.perspective\\.aspectRatio: -1\\.5 is out of range")
 clpath_usage_test(gltf_light_intensity_text RC 1 ARGS render ${HOSTILE}/light-intensity-string.gltf ${TINY} -o ${HOSTILE_OUT}/li.pfm
                   OUTPUT "^clpath: error: .*light-intensity-string\\.gltf: extensions\\.KHR_lights_punctual\\.lights\\[0\\]\\.intensity: expected a number, got a string \\(\"bright\"\\)")
+
+# --- real files that must load (a neutral stand-in and a warning where something is missing) ---
+clpath_usage_test(gltf_orthographic_camera RC 0 ARGS render ${HOSTILE}/orthographic-camera.gltf ${TINY} -o ${HOSTILE_OUT}/ortho.pfm
+                  MAKES ${HOSTILE_OUT}/ortho.pfm OUTPUT "summary: "
+                  REJECT "error")
+clpath_usage_test(gltf_orthographic_camera_overridden RC 0 ARGS render ${HOSTILE}/orthographic-camera.gltf ${TINY}
+                  --camera fov=40 -o ${HOSTILE_OUT}/ortho-cam.pfm MAKES ${HOSTILE_OUT}/ortho-cam.pfm)
+clpath_usage_test(gltf_skin_rest_pose RC 0 ARGS render ${HOSTILE}/skin-without-inverse-bind-matrices.gltf ${TINY}
+                  -o ${HOSTILE_OUT}/skin.pfm MAKES ${HOSTILE_OUT}/skin.pfm
+                  OUTPUT "clpath: warning: .*skin-without-inverse-bind-matrices\\.gltf: 1 skin: not evaluated; the meshes are loaded in their rest pose")
+clpath_usage_test(obj_missing_map_kd RC 0 ARGS render ${HOSTILE}/missing-map.obj ${TINY} -o ${HOSTILE_OUT}/map.pfm
+                  MAKES ${HOSTILE_OUT}/map.pfm
+                  OUTPUT "clpath: warning: .*missing-map\\.mtl:4: map_Kd of material 'wood': .*hostile/textures/wood\\.png: no such file; the material is rendered without it")
+
+# --- --restrict-files: canaries reached through "..", %2F, a link, an absolute path, a .glb's uri -
+add_test(NAME cli.hostile.restrict_files
+         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/restrict_files.sh $<TARGET_FILE:clpath> ${HOSTILE_OUT}/restrict)
+set_tests_properties(cli.hostile.restrict_files PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 300)

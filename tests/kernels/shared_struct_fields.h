@@ -23,7 +23,7 @@
     F(Light, cos_inner) \
     F(AliasEntry, prob) F(AliasEntry, alias) F(AliasEntry, pmf) F(AliasEntry, pad) \
     F(CameraData, eye) F(CameraData, width) F(CameraData, forward) F(CameraData, height) F(CameraData, right) \
-    F(CameraData, pad0) F(CameraData, up) F(CameraData, pad1) \
+    F(CameraData, orthographic) F(CameraData, up) F(CameraData, pad1) \
     F(FrameParams, camera) F(FrameParams, seed) F(FrameParams, first_sample) F(FrameParams, samples) \
     F(FrameParams, rr_rule) F(FrameParams, rr_min_depth) F(FrameParams, pixel_offset) \
     F(FrameParams, pixel_count) F(FrameParams, light_count) F(FrameParams, env_light) F(FrameParams, ao_distance) \

@@ -546,4 +546,33 @@ void check_node_hierarchy(const json& doc, const std::string& file, std::size_t 
     }
 }
 
+std::string rest_pose_warning(const json& doc, const std::string& file) {
+    auto count = [&](const char* section) {
+        const auto it = doc.find(section);
+        return it != doc.end() && it->is_array() ? it->size() : std::size_t(0);
+    };
+    std::size_t morphed = 0;
+    if (auto meshes = doc.find("meshes"); meshes != doc.end())
+        for (const auto& m : *meshes)
+            if (auto prims = m.find("primitives"); prims != m.end())
+                for (const auto& p : *prims)
+                    if (p.contains("targets") && !p["targets"].empty()) ++morphed;
+    std::string what;
+    auto add = [&](std::size_t n, const char* one, const char* many) {
+        if (n) what += (what.empty() ? "" : ", ") + std::to_string(n) + " " + (n == 1 ? one : many);
+    };
+    add(count("skins"), "skin", "skins");
+    add(morphed, "primitive with morph targets", "primitives with morph targets");
+    add(count("animations"), "animation", "animations");
+    if (what.empty()) return "";
+    return file + ": " + what + ": not evaluated; the meshes are loaded in their rest pose (bind pose, morph weights 0)";
+}
+
+bool drop_skins(json& doc) {
+    bool any = doc.erase("skins") > 0;
+    if (auto nodes = doc.find("nodes"); nodes != doc.end())
+        for (auto& n : *nodes) any = n.erase("skin") > 0 || any;
+    return any;
+}
+
 }  // namespace clpath::gltf

@@ -52,4 +52,12 @@ void check_document(const nlohmann::json& doc, const std::string& file);
 // (LoadOptions::max_placed_nodes).
 void check_node_hierarchy(const nlohmann::json& doc, const std::string& file, std::size_t max_placed);
 
+// Skins, morph targets and animations are not evaluated: the meshes load in
+// their rest pose (morph weights zero). One warning naming what the file has,
+// or "" when it has none of them.
+std::string rest_pose_warning(const nlohmann::json& doc, const std::string& file);
+
+// Removes "skins" and every node's "skin"; true if there were any.
+bool drop_skins(nlohmann::json& doc);
+
 }  // namespace clpath::gltf

@@ -79,7 +79,9 @@ std::string uri_path(const std::string& file, const std::string& uri) {
     return (fs::path(file).parent_path() / percent_decode(uri, ok)).lexically_normal().string();
 }
 
-void check_uris(const nlohmann::json& doc, const std::string& file, const LoadOptions& options, DataUris& uris) {
+std::vector<std::string> check_uris(const nlohmann::json& doc, const std::string& file, const LoadOptions& options,
+                                    DataUris& uris) {
+    std::vector<std::string> warnings;
     for (const char* section : {"buffers", "images"}) {
         auto it = doc.find(section);
         if (it == doc.end() || !it->is_array()) continue;
@@ -101,10 +103,21 @@ void check_uris(const nlohmann::json& doc, const std::string& file, const LoadOp
             (void)percent_decode(uri, ok);
             if (!ok) fail("'" + uri.substr(0, 80) + "' has a bad %-escape");
             const std::string full = uri_path(file, uri);
+            try {
+                check_file_allowed(full);
+            } catch (const Error& e) {
+                fail(e.what());
+            }
             Files f{&options, {}, &uris};
-            if (!fs_exists(full, &f)) fail(full + ": no such file");
+            if (fs_exists(full, &f)) continue;
+            if (std::string(section) == "buffers") fail(full + ": no such file");
+            // A missing image: as Blender does, the textures that use it are left
+            // out (a neutral texture), with a warning; the geometry still loads.
+            warnings.push_back(file + ": " + path + ": " + full +
+                               ": no such file; the textures that use the image are left out");
         }
     }
+    return warnings;
 }
 
 }  // namespace clpath::gltf

@@ -27,6 +27,8 @@ constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
 constexpr int kUByte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
 constexpr int kUShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
 constexpr int kUInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+constexpr int kByte = TINYGLTF_COMPONENT_TYPE_BYTE;
+constexpr int kShort = TINYGLTF_COMPONENT_TYPE_SHORT;
 
 std::string lower_extension(const std::string& file) {
     std::string e = fs::path(file).extension().string();
@@ -113,7 +115,9 @@ GltfPrimitive read_primitive(const Source& src, const tinygltf::Primitive& p, co
     const std::string ap = path + ".attributes.";
     const int pos_i = attr("POSITION");
     if (pos_i < 0) src.fail(ap + "POSITION", "a primitive needs positions");
-    const View pos = gltf::view(src, pos_i, ap + "POSITION", TINYGLTF_TYPE_VEC3, -1, {kFloat});
+    // The component types are KHR_mesh_quantization's (a superset of the core's).
+    const View pos = gltf::view(src, pos_i, ap + "POSITION", TINYGLTF_TYPE_VEC3, -1, {kFloat, kByte, kUByte, kShort, kUShort},
+                                false, true);
     const std::size_t n = pos.count;
     auto same_count = [&](const View& v) {
         if (v.count != n)
@@ -121,11 +125,13 @@ GltfPrimitive read_primitive(const Source& src, const tinygltf::Primitive& p, co
         return v;
     };
     std::optional<View> nrm, tan, uv, col;
-    if (int i = attr("NORMAL"); i >= 0) nrm = same_count(gltf::view(src, i, ap + "NORMAL", TINYGLTF_TYPE_VEC3, -1, {kFloat}));
+    if (int i = attr("NORMAL"); i >= 0)
+        nrm = same_count(gltf::view(src, i, ap + "NORMAL", TINYGLTF_TYPE_VEC3, -1, {kFloat, kByte, kShort}));
     if (int i = attr("TANGENT"); i >= 0)
-        tan = same_count(gltf::view(src, i, ap + "TANGENT", TINYGLTF_TYPE_VEC4, -1, {kFloat}));
+        tan = same_count(gltf::view(src, i, ap + "TANGENT", TINYGLTF_TYPE_VEC4, -1, {kFloat, kByte, kShort}));
     if (int i = attr("TEXCOORD_0"); i >= 0)
-        uv = same_count(gltf::view(src, i, ap + "TEXCOORD_0", TINYGLTF_TYPE_VEC2, -1, {kFloat, kUByte, kUShort}));
+        uv = same_count(gltf::view(src, i, ap + "TEXCOORD_0", TINYGLTF_TYPE_VEC2, -1, {kFloat, kByte, kUByte, kShort, kUShort},
+                                   false, true));
     if (int i = attr("COLOR_0"); i >= 0)
         col = same_count(gltf::view(src, i, ap + "COLOR_0", TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4, {kFloat, kUByte, kUShort}));
     if (p.material >= 0 && std::size_t(p.material) >= src.model.materials.size())
@@ -186,16 +192,22 @@ PunctualLight read_light(const Source& src, int index, const glm::mat4& world, c
 Camera read_camera(const Source& src, int index, const glm::mat4& world, const std::string& path) {
     const tinygltf::Camera& gc = src.model.cameras[std::size_t(index)];
     const std::string cp = "cameras[" + std::to_string(index) + "]";
-    if (gc.type != "perspective") src.fail(cp + ".type", "only perspective cameras are supported, found '" + gc.type + "'");
     Camera c;
     c.eye = glm::vec3(world * glm::vec4(0, 0, 0, 1));
     c.target = c.eye + glm::vec3(world * glm::vec4(0, 0, -1, 0));  // cameras look down their local -z, +y up
     c.up = glm::vec3(world * glm::vec4(0, 1, 0, 0));
-    c.vfov_degrees = float(glm::degrees(gc.perspective.yfov));
     c.width = 640;
     c.height = 480;
-    if (gc.perspective.aspectRatio > 0 && std::isfinite(gc.perspective.aspectRatio))
-        c.height = std::clamp(int(std::lround(640.0 / gc.perspective.aspectRatio)), 1, 16384);
+    if (gc.type == "orthographic") {
+        // xmag and ymag are the view's half-extents; their ratio is the image's aspect.
+        const double xmag = std::fabs(gc.orthographic.xmag), ymag = std::fabs(gc.orthographic.ymag);
+        c.ortho_half_height = float(ymag);
+        if (xmag > 0 && ymag > 0) c.height = std::clamp(int(std::lround(640.0 * ymag / xmag)), 1, 16384);
+    } else {
+        c.vfov_degrees = float(glm::degrees(gc.perspective.yfov));
+        if (gc.perspective.aspectRatio > 0 && std::isfinite(gc.perspective.aspectRatio))
+            c.height = std::clamp(int(std::lround(640.0 / gc.perspective.aspectRatio)), 1, 16384);
+    }
     try {
         (void)camera_data(c);
     } catch (const Error& e) {
@@ -237,13 +249,22 @@ GltfModel read_gltf(const std::string& bytes, const std::string& file, const Loa
     // first; one that does not parse is left to tinygltf to report.
     gltf::check_json_depth(json_text, file);
     GltfModel out;
+    std::string rewritten;  // the document tinygltf reads, when it differs from the file's
     {
-        const nlohmann::json doc = nlohmann::json::parse(json_text.begin(), json_text.end(), nullptr, false);
+        nlohmann::json doc = nlohmann::json::parse(json_text.begin(), json_text.end(), nullptr, false);
         if (!doc.is_discarded()) {
             out.warnings = gltf::check_version_and_extensions(doc, file);
             gltf::check_document(doc, file);
             gltf::check_node_hierarchy(doc, file, options.max_placed_nodes);
-            gltf::check_uris(doc, file, options, data_uris);
+            for (auto& w : gltf::check_uris(doc, file, options, data_uris)) out.warnings.push_back(std::move(w));
+            if (auto w = gltf::rest_pose_warning(doc, file); !w.empty()) out.warnings.push_back(w);
+            // Skins are not animated here, so they are dropped before tinygltf,
+            // which refuses one without inverseBindMatrices (optional in the
+            // specification); the meshes stay in their rest pose.
+            if (gltf::drop_skins(doc)) {
+                rewritten = doc.dump();
+                if (binary) rewritten = gltf::glb_with_json(bytes, rewritten);
+            }
         }
     }
 
@@ -254,9 +275,10 @@ GltfModel read_gltf(const std::string& bytes, const std::string& file, const Loa
     tinygltf::Model model;
     std::string err, warn;
     const std::string dir = fs::path(file).parent_path().string();
-    const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                         unsigned(bytes.size()), dir)
-                           : loader.LoadASCIIFromString(&model, &err, &warn, text.data(), unsigned(text.size()), dir);
+    const std::string& given = rewritten.empty() ? (binary ? bytes : text) : rewritten;
+    const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(given.data()),
+                                                         unsigned(given.size()), dir)
+                           : loader.LoadASCIIFromString(&model, &err, &warn, given.data(), unsigned(given.size()), dir);
     if (!ok || !err.empty()) {
         std::string what = err.empty() ? warn : err;
         while (!what.empty() && std::isspace(static_cast<unsigned char>(what.back()))) what.pop_back();
@@ -299,6 +321,10 @@ GltfModel read_gltf(const std::string& bytes, const std::string& file, const Loa
                     for (std::size_t p = 0; p < prims.size(); ++p) {
                         out.meshes[mi].push_back(read_primitive(
                             src, prims[p], "meshes[" + std::to_string(mi) + "].primitives[" + std::to_string(p) + "]"));
+                        GltfPrimitive& prim = out.meshes[mi].back();
+                        if (prim.material >= 0)
+                            if (const auto& t = out.materials[std::size_t(prim.material)].uv_transform)
+                                for (glm::vec2& uv : prim.uvs) uv = glm::vec2(*t * glm::vec3(uv, 1));
                         if (!out.meshes[mi].back().warning.empty()) out.warnings.push_back(out.meshes[mi].back().warning);
                     }
                     mesh_read[mi] = true;

@@ -45,9 +45,11 @@ struct View {
 // The accessor `index`, named `path` in messages, which must be of type
 // `type` (TINYGLTF_TYPE_*, or any of two when alt_type >= 0) and of a
 // component type in `allowed` (float ones are converted, integer ones only
-// when normalized unless `integers` says they are indices).
+// when normalized unless `integers` says they are indices, or
+// `plain_integers` that unnormalized ones are values, as
+// KHR_mesh_quantization allows for positions and texture coordinates).
 View view(const Source& src, int index, const std::string& path, int type, int alt_type,
-          const std::vector<int>& allowed, bool integers = false);
+          const std::vector<int>& allowed, bool integers = false, bool plain_integers = false);
 
 // Base64 data URIs of buffers in a .gltf's text, decoded here rather than
 // by tinygltf: its decoder and two JSON parses (check_uris and tinygltf's) of
@@ -83,9 +85,11 @@ std::string percent_decode(const std::string& s, bool& ok);
 std::string uri_path(const std::string& file, const std::string& uri);
 
 // The external files the document names, checked before tinygltf reads them,
-// so that a missing buffer or image, or a URI that is not a relative path or
-// a base64 data URI, is reported by its glTF path and the path it resolves to.
-void check_uris(const nlohmann::json& doc, const std::string& file, const LoadOptions& options, DataUris& uris);
+// so that a missing buffer, or a URI that is not a relative path or a base64
+// data URI, is reported by its glTF path and the path it resolves to. A
+// missing image is a warning (returned): its textures are left out.
+std::vector<std::string> check_uris(const nlohmann::json& doc, const std::string& file, const LoadOptions& options,
+                                    DataUris& uris);
 
 // Materials and the textures they name: appends to model.materials and model.textures.
 void read_materials(const Source& src, GltfModel& model);

@@ -63,3 +63,22 @@ d["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "point", "intensi
 d["nodes"].append({"translation": [0, 0, 2], "extensions": {"KHR_lights_punctual": {"light": 0}}})
 d["scenes"][0]["nodes"].append(1)
 write('light-intensity-string.gltf', d)
+
+# Real files that must load: an orthographic camera, a skin without
+# inverseBindMatrices, and an OBJ whose map_Kd file is missing.
+d = triangle()
+d["cameras"] = [{"type": "orthographic", "orthographic": {"xmag": 0.8, "ymag": 0.6, "znear": 0.1, "zfar": 10}}]
+d["nodes"].append({"camera": 0, "translation": [0.4, 0.4, 3]})
+d["scenes"][0]["nodes"].append(1)
+write('orthographic-camera.gltf', d)
+
+d = triangle()
+d["nodes"] = [{"mesh": 0, "skin": 0}, {"name": "joint"}]
+d["scenes"][0]["nodes"] = [0, 1]
+d["skins"] = [{"joints": [1]}]
+write('skin-without-inverse-bind-matrices.gltf', d)
+
+with open(os.path.join(HERE, 'missing-map.obj'), 'w') as f:
+    f.write('mtllib missing-map.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl wood\nf 1/1 2/2 3/3\n')
+with open(os.path.join(HERE, 'missing-map.mtl'), 'w') as f:
+    f.write('# a material whose image is not there\nnewmtl wood\nKd 0.8 0.6 0.4\nmap_Kd textures/wood.png\n')
