@@ -1,4 +1,4 @@
-/* Pinhole or thin-lens camera. Conventions: pixel (0, 0) is the top-left corner of the
+/* Pinhole, thin-lens or orthographic camera. Conventions: pixel (0, 0) is the top-left corner of the
  * image, rows go down; image right is forward x up (right-handed); each sample
  * is jittered uniformly inside its pixel (a box filter). */
 #ifndef CLP_CAMERA_CL
@@ -18,6 +18,11 @@ static inline Ray camera_ray(constant const CameraData* cam, uint px, uint py, f
     float x = 2.0f * ((float)px + jx) / (float)cam->width - 1.0f;
     float y = 1.0f - 2.0f * ((float)py + jy) / (float)cam->height;
     Ray r;
+    if (cam->orthographic) {
+        r.o = load3c(cam->eye) + x * load3c(cam->right) + y * load3c(cam->up);
+        r.d = load3c(cam->forward);
+        return r;
+    }
     r.o = load3c(cam->eye);
     r.d = normalize3(load3c(cam->forward) + x * load3c(cam->right) + y * load3c(cam->up));
     return r;
@@ -30,7 +35,8 @@ static inline Ray camera_ray(constant const CameraData* cam, uint px, uint py, f
  * and up, so the pinhole direction forward + x right + y up reaches that plane
  * at focus_distance times itself). A pinhole (lens_radius 0) draws no random
  * numbers, so its samples stay those of a camera without a lens. Draws after
- * the pixel jitter, in the megakernel and the wavefront camera alike. */
+ * the pixel jitter, in the megakernel and the wavefront camera alike. The
+ * host never gives an orthographic camera a lens. */
 static inline void camera_lens(constant const CameraData* cam, Rng* rng, Ray* r) {
     if (!(cam->lens_radius > 0.0f)) return;
     float u1 = rng_next(rng), u2 = rng_next(rng);

@@ -270,7 +270,10 @@ typedef struct {
  * direction(x_ndc, y_ndc) = forward + x_ndc * right + y_ndc * up,
  * where forward is a unit vector and right and up are scaled by tan(fov/2)
  * of their axis. A thin lens (lens_radius > 0) focuses on the plane
- * focus_distance along forward; lens_radius 0 is a pinhole. */
+ * focus_distance along forward; lens_radius 0 is a pinhole. Orthographic
+ * (orthographic != 0, never with a lens): every ray has direction forward and
+ * starts at eye + x_ndc * right + y_ndc * up, right and up scaled by the
+ * half-extents. */
 typedef struct {
     float eye[3];
     uint width;
@@ -280,6 +283,8 @@ typedef struct {
     float lens_radius;    /* world units; 0: pinhole (focus_distance unused) */
     float up[3];
     float focus_distance; /* world units along forward, > 0 with a lens */
+    uint orthographic;
+    uint pad0, pad1, pad2;
 } CameraData;
 
 /* What one launch of the path kernel needs besides the buffers. */
@@ -382,8 +387,8 @@ CLP_STATIC_ASSERT(__builtin_offsetof(TriVerts, v1) == 16 && __builtin_offsetof(T
 CLP_STATIC_ASSERT(sizeof(Material) == 48, material_is_48_bytes);
 CLP_STATIC_ASSERT(sizeof(MaterialExt) == 32, material_ext_is_32_bytes);
 CLP_STATIC_ASSERT(sizeof(TextureDesc) == 16, texture_desc_is_16_bytes);
-CLP_STATIC_ASSERT(sizeof(CameraData) == 64, camera_is_64_bytes);
-CLP_STATIC_ASSERT(sizeof(FrameParams) == 160, frame_params_is_160_bytes);
+CLP_STATIC_ASSERT(sizeof(CameraData) == 80, camera_is_80_bytes);
+CLP_STATIC_ASSERT(sizeof(FrameParams) == 176, frame_params_is_176_bytes);
 CLP_STATIC_ASSERT(sizeof(Light) == 64, light_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(AliasEntry) == 16, alias_entry_is_16_bytes);
 CLP_STATIC_ASSERT(sizeof(Counters) == 16, counters_is_16_bytes);

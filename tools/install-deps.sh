@@ -16,6 +16,7 @@ fi
 # benchmarks/path_embree/pathtracer.sh times clpath and its Embree baseline against.
 # libopenmpi-dev, openmpi-bin: rendering over MPI ranks (optional at build
 # time, but the test suite checks it).
+# libxxhash-dev: the checksum of checkpoint files (xxHash's XXH3).
 # oclgrind: a second OpenCL implementation, a simulator that checks every kernel
 # for out-of-bounds and uninitialised accesses and data races (tests/kernels/).
 # libclc-14, llvm-14 (llvm-link, opt, llc, llvm-nm), clang-15 and llvm-15: the
@@ -31,7 +32,7 @@ packages="
     clang-14 llvm-14 libclc-14 clang-15 llvm-15
     pocl-opencl-icd ocl-icd-opencl-dev opencl-headers clinfo oclgrind
     libglm-dev libglfw3-dev libopenimageio-dev openimageio-tools
-    libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libgtest-dev
+    libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libgtest-dev libxxhash-dev
     xvfb xauth libimgui-dev glmark2-data
     python3-numpy python3-matplotlib python3-venv
     libembree-dev embree-tools

@@ -173,7 +173,8 @@ Command add_bench_convergence_command(CLI::App& bench) {
     cmd->add_option("--clamp", o->compare.clamp, "Clamp both images to [0, V] before comparing")
         ->check(real_number(0, 1e9, true));
     cmd->add_flag("--quick", o->quick, "Seconds, for CI: about 32 pixels wide, up to 16 spp");
-    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
+    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')")
+        ->check(non_empty(kDeviceChoices));
     return [o] { return run_convergence(*o); };
 }
 

@@ -171,7 +171,8 @@ Command add_bench_path_command(CLI::App& bench) {
         ->check(whole_number(0, 1024))
         ->capture_default_str();
     cmd->add_option("--csv", o->csv, "Write the rounds as CSV to this file");
-    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
+    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')")
+        ->check(non_empty(kDeviceChoices));
     cmd->add_flag("--quick", o->quick, "32x32 pixels, 64 spp, one round (for CI)");
     return [o] { return run_path(*o); };
 }

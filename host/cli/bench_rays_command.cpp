@@ -208,7 +208,8 @@ Command add_bench_rays_command(CLI::App& bench) {
     add_kernel_variant_options(cmd, &o->ab_kernels, &o->ab_options, "the batch kernels",
                                "each batch prints the variant's speed over the built-in kernels' (median of the "
                                "launch pairs, quartiles) and how many answers differ");
-    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
+    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')")
+        ->check(non_empty(kDeviceChoices));
     cmd->add_flag("--quick", o->quick, "32x24 pixels, one timed launch, every ray checked (for CI)");
     cmd->add_flag("--no-embree", o->no_embree,
                   embree_built_in() ? "Skip the Embree CPU baselines (by default Embree traces every batch too, in its default "

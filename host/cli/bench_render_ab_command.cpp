@@ -78,7 +78,8 @@ Command add_bench_render_ab_command(CLI::App& bench) {
     cmd->add_option("--width", o->width, "Image width (default: the scene's)")->check(whole_number(1, 16384));
     cmd->add_option("--height", o->height, "Image height (default: the scene's)")->check(whole_number(1, 16384));
     cmd->add_option("--seed", o->seed, "Seed of both renders")->check(whole_number(0, 4294967294u))->capture_default_str();
-    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
+    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')")
+        ->check(non_empty(kDeviceChoices));
     cmd->add_flag("--quick", o->quick, "32x24 pixels, 2 launch pairs (for CI)");
     return [o] { return run_render_ab_command(*o); };
 }

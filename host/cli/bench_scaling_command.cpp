@@ -99,7 +99,8 @@ Command add_bench_scaling_command(CLI::App& bench) {
     cmd->add_option("--launches", o->launches, "Timed launches per batch")->check(whole_number(1, 100))->capture_default_str();
     cmd->add_option("--csv", o->csv, "Write the table as CSV to this file");
     cmd->add_option("--md", o->md, "Write the table as Markdown to this file");
-    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
+    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')")
+        ->check(non_empty(kDeviceChoices));
     cmd->add_flag("--quick", o->quick, "100 and 1000 triangles at a tiny resolution (for CI)");
     return [o] { return run_scaling_cli(*o); };
 }

@@ -1,10 +1,12 @@
 // clpath: an OpenCL Monte Carlo path tracer. Subcommands: render, devices, compare, bench, export (and view with the viewer built in).
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <string>
 
 #include "cli/commands.hpp"
 #include "mpi/launch.hpp"
+#include "scene/load/load_options.hpp"
 #include "util/error.hpp"
 
 namespace {
@@ -34,6 +36,11 @@ int run(int argc, char** argv) {
         clpath::Command run = adder(app);
         commands[app.get_subcommands({})[before]] = std::move(run);
     };
+    std::string restrict_dir;
+    app.add_option("--restrict-files", restrict_dir,
+                   "Open no scene, mesh, material, texture or environment file outside this folder (after resolving "
+                   "'..', links and absolute paths); default: $CLPATH_RESTRICT_FILES, else no restriction");
+    app.fallthrough();  // before the commands, which inherit it: the option may follow a command's name
     add(clpath::add_render_command);
     add(clpath::add_devices_command);
     add(clpath::add_compare_command);
@@ -56,6 +63,9 @@ int run(int argc, char** argv) {
         return 2;
     }
     try {
+        if (restrict_dir.empty())
+            if (const char* env = std::getenv("CLPATH_RESTRICT_FILES")) restrict_dir = env;
+        clpath::restrict_files_to(restrict_dir);
         for (auto* sub : app.get_subcommands())
             if (auto it = commands.find(sub); it != commands.end()) return it->second();
         return 2;

@@ -23,6 +23,12 @@ std::string plain_number(double v) {
     return s;
 }
 
+CLI::Validator non_empty(const std::string& what) {
+    return CLI::Validator(
+        [what](std::string& text) -> std::string { return text.empty() ? "an empty value; give " + what : std::string(); },
+        "TEXT");
+}
+
 CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi) {
     const std::string range = "a whole number from " + std::to_string(lo) + " to " + std::to_string(hi);
     return CLI::Validator(

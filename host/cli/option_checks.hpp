@@ -19,6 +19,11 @@ CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi);
 // A finite number in [lo, hi], or (lo, hi] when lo_open.
 CLI::Validator real_number(double lo, double hi, bool lo_open = false);
 
+// Text that must not be empty: an empty --device '' would otherwise mean "the
+// default", silently. `what` says what to give instead.
+CLI::Validator non_empty(const std::string& what);
+inline const char* const kDeviceChoices = "a device index or name, cpu, gpu or all (see 'clpath devices')";
+
 // The help of every command's scene argument: each loads what render loads.
 std::string scene_argument_help();
 

@@ -11,6 +11,7 @@
 
 #include "bvh/bvh.hpp"
 #include "cl/context.hpp"
+#include "cli/checkpoint_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/scene_overrides.hpp"
@@ -22,6 +23,7 @@
 #include "denoise/denoiser.hpp"
 #include "denoise/guides.hpp"
 #include "mpi/launch.hpp"
+#include "render/checkpoint.hpp"
 #include "render/render_session.hpp"
 #include "render/renderer.hpp"
 #include "scene/builtin_scenes.hpp"
@@ -72,6 +74,7 @@ struct RenderOptions {
     std::uint32_t chunk_samples = 0;
     double checkpoint_seconds = 0;
     std::string checkpoint_file, resume;
+    bool keep_checkpoint = false;
     float exposure = 0;
     std::string tonemap = "clamp";
     std::optional<std::string> camera, env;
@@ -94,10 +97,34 @@ std::string denoised_path(const std::string& out) {
     return (p.parent_path() / (p.stem().string() + ".denoised" + p.extension().string())).string();
 }
 
+// --device, one device or a list. A list's faults (an empty item, 'all' among
+// others, a device named twice) are bad usage (exit 2), as an unknown device is.
+std::vector<DeviceInfo> choose_devices(const std::string& spec) {
+    if (spec.find(',') == std::string::npos) return select_devices(spec);
+    std::vector<DeviceInfo> out;
+    std::size_t start = 0;
+    for (std::size_t end = 0; end != std::string::npos; start = end + 1) {
+        end = spec.find(',', start);
+        const std::string item = spec.substr(start, end == std::string::npos ? std::string::npos : end - start);
+        if (item.empty()) throw UsageError("--device '" + spec + "': an empty item in the device list");
+        if (item == "all") throw UsageError("--device '" + spec + "': 'all' cannot be combined with other devices");
+        DeviceInfo d = select_device(item);
+        for (const auto& e : out)
+            if (e.index == d.index)
+                throw UsageError("--device '" + spec + "': device [" + std::to_string(d.index) + "] " + d.name +
+                                 " is named twice ('" + item + "')");
+        out.push_back(std::move(d));
+    }
+    return out;
+}
+
 int run_render(const RenderOptions& o) {
     // Everything that can be checked before rendering is checked first.
     const auto load_start = std::chrono::steady_clock::now();
     const double progress_interval = progress_interval_from_env();
+    if (!o.gltf_camera.empty() && !is_gltf_file(o.scene))
+        throw UsageError("--gltf-camera " + o.gltf_camera + ": " + o.scene +
+                         " is not a glTF model (the option picks a camera of a .gltf or .glb file)");
     LoadOptions load;
     load.gltf_camera = o.gltf_camera;
     load.presentation.ground = !o.no_ground;
@@ -118,6 +145,8 @@ int run_render(const RenderOptions& o) {
     display.tone_map = parse_tone_map(o.tonemap);
     const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
     for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
+    if (!o.quiet)
+        for (const auto& n : scene.notes) std::fprintf(stderr, "clpath: %s\n", n.c_str());
     if (!o.quiet)
         std::fprintf(stderr, "clpath: loaded '%s' from %s in %.3f s: %zu triangles, %zu materials\n", scene.name.c_str(),
                      o.scene.c_str(), load_seconds, scene.triangle_count(), scene.materials.size());
@@ -158,6 +187,11 @@ int run_render(const RenderOptions& o) {
         }
         if (!o.quiet) std::fprintf(stderr, "clpath: denoising with %s\n", denoiser->library_path().c_str());
     }
+    const std::string checkpoint_path = o.checkpoint_file.empty() ? outputs.front() + ".checkpoint" : o.checkpoint_file;
+    if (o.checkpoint_seconds > 0) check_checkpoint_destination(checkpoint_path, !o.checkpoint_file.empty());
+    else if (!o.checkpoint_file.empty())
+        std::fprintf(stderr, "clpath: warning: --checkpoint-file has no effect without --checkpoint SECONDS\n");
+    if (!o.resume.empty()) check_resume_file(o.resume);
     // --time alone renders until the time is up; --spp with it caps the samples.
     const std::uint64_t spp = o.spp ? *o.spp : (o.time_limit > 0 ? 0 : scene.render.spp);
     validate_settings(settings);
@@ -165,7 +199,7 @@ int run_render(const RenderOptions& o) {
         std::fprintf(stderr, "clpath: warning: scene '%s' has no emitter; the image will be black\n",
                      scene.name.c_str());
 
-    const std::vector<DeviceInfo> devices = select_devices(o.device);
+    const std::vector<DeviceInfo> devices = choose_devices(o.device);
     ProcessGroup* mpi = mpi_job();
     const bool lead = !mpi || mpi_rank() == 0;
     if (!o.quiet) {
@@ -180,7 +214,7 @@ int run_render(const RenderOptions& o) {
     so.time_limit = o.time_limit;
     so.chunk_samples = o.chunk_samples;
     so.checkpoint_seconds = o.checkpoint_seconds;
-    so.checkpoint_path = o.checkpoint_file.empty() ? outputs.front() + ".checkpoint" : o.checkpoint_file;
+    so.checkpoint_path = checkpoint_path;
     so.resume_path = o.resume;
     const bool show_progress = !o.quiet && lead;
     InterruptFlag interrupt;
@@ -189,6 +223,10 @@ int run_render(const RenderOptions& o) {
     // while the devices get ready too.
     std::unique_ptr<Progress> progress;
     SessionHooks hooks;
+    hooks.on_resumed = [&](std::uint64_t spp) {
+        if (lead && !o.quiet)
+            std::fprintf(stderr, "clpath: resumed at %llu spp from %s\n", (unsigned long long)spp, o.resume.c_str());
+    };
     hooks.on_start = [&](const BvhStats& bvh) {
         if (show_progress) std::fprintf(stderr, "clpath: %s\n", describe(bvh).c_str());
         ProgressOptions po;
@@ -202,6 +240,8 @@ int run_render(const RenderOptions& o) {
         result = render_session(scene, settings, devices, so, hooks, mpi);
     } catch (const UsageError&) {
         throw;  // about the command line or the environment, not the scene
+    } catch (const CheckpointError&) {
+        throw;  // about the checkpoint's file, which the message names
     } catch (const Error& e) {
         throw Error(o.scene + ": " + e.what());
     }
@@ -221,12 +261,16 @@ int run_render(const RenderOptions& o) {
     }
     if (!result.leads) return 0;
     const std::uint64_t done_spp = result.film.samples_per_pixel();
+    // Interrupted: the partial image is written, then the exit status is the
+    // shell's for a death by that signal (130 for SIGINT, 143 for SIGTERM), so
+    // that a script can tell an interrupted render from a finished one.
+    const int stopped_status = 128 + interrupt.signal();
     if (result.stopped) {
         std::fprintf(stderr, "clpath: interrupted by signal %d after %llu samples per pixel\n", interrupt.signal(),
                      (unsigned long long)done_spp);
         if (o.no_partial) {
             std::fprintf(stderr, "clpath: --no-partial: nothing written\n");
-            return 130;
+            return stopped_status;
         }
     }
     if (done_spp == 0) throw Error("no sample was finished, so there is no image to write");
@@ -255,28 +299,35 @@ int run_render(const RenderOptions& o) {
             if (!o.quiet) std::fprintf(stderr, "clpath: wrote %s\n", denoised_path(out).c_str());
         }
     }
-    // A finished render needs its checkpoint no more.
-    if (!result.stopped && o.checkpoint_seconds > 0) std::filesystem::remove(so.checkpoint_path);
+    // A finished render needs its checkpoints no more: the one it wrote and the one it resumed.
+    if (!result.stopped && !o.keep_checkpoint)
+        for (const std::string& path : {o.checkpoint_seconds > 0 ? so.checkpoint_path : std::string(), o.resume})
+            if (!path.empty() && std::filesystem::remove(path) && !o.quiet)
+                std::fprintf(stderr, "clpath: removed the checkpoint %s (the render finished; --keep-checkpoint keeps it)\n",
+                             path.c_str());
 
+    // Rates count this run's samples only: a resumed render's earlier ones took no time here.
     const double wall = result.wall_seconds;
-    const double samples = double(done_spp) * scene.camera.width * scene.camera.height;
+    const std::uint64_t run_spp = done_spp - std::min(done_spp, result.resumed_spp);
+    const double samples = double(run_spp) * scene.camera.width * scene.camera.height;
     std::string device_names;
     for (const auto& d : devices) device_names += (device_names.empty() ? "" : ", ") + d.name;
     std::printf(
         "summary: device=\"%s\" devices=%zu integrator=%s triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f "
         "spp=%llu render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s kernel=%s "
-        "bytes_to_device=%llu bytes_from_device=%llu%s%s\n",
+        "bytes_to_device=%llu bytes_from_device=%llu%s%s%s\n",
         device_names.c_str(), result.shares.size(), integrator_name(settings.integrator), scene.triangle_count(),
         result.bvh.build_ms, result.bvh.node_count, result.bvh.sah_cost, (unsigned long long)done_spp, wall,
         samples / wall * 1e-6, double(result.rays) / wall * 1e-6, (unsigned long long)result.rays,
         (unsigned long long)result.nonfinite, accel_name(settings.accel), kernel_shapes_used(result.shares).c_str(),
         (unsigned long long)result.bytes_to_device, (unsigned long long)result.bytes_from_device,
+        result.resumed_spp ? (" resumed_spp=" + std::to_string(result.resumed_spp)).c_str() : "",
         result.stopped ? " interrupted=1" : "",
         denoiser && !result.stopped
             ? (" denoise_s=" + std::to_string(denoise_seconds) + " guides_s=" + std::to_string(guides.seconds)).c_str()
             : "");
     if (result.shares.size() > 1 || mpi)
-        for (const auto& s : result.shares)
+        for (const auto& s : result.shares)  // a device's share: its chunks of this run
             std::printf("device: \"%s\" chunks=%llu spp=%llu share=%.1f%% msamples_per_s=%.3f\n", s.device.c_str(),
                         (unsigned long long)s.chunks, (unsigned long long)s.samples_per_pixel,
                         done_spp ? 100.0 * double(s.samples_per_pixel) / double(done_spp) : 0.0,
@@ -286,7 +337,7 @@ int run_render(const RenderOptions& o) {
     if (result.nonfinite)
         std::fprintf(stderr, "clpath: warning: %llu samples were NaN or infinite and were dropped\n",
                      (unsigned long long)result.nonfinite);
-    return 0;
+    return result.stopped ? stopped_status : 0;
 }
 
 }  // namespace
@@ -296,7 +347,8 @@ Command add_render_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("render", "Render a scene progressively and write the image");
     cmd->add_option("scene", o->scene, scene_argument_help())
         ->capture_default_str();
-    cmd->add_option("--gltf-camera", o->gltf_camera, "A glTF model's camera, by name or index (default: the first)");
+    cmd->add_option("--gltf-camera", o->gltf_camera, "A glTF model's camera, by name or index (default: the first)")
+        ->check(non_empty("a camera's name or index"));
     cmd->add_option("--spp", o->spp, "Samples per pixel (default: the scene's, else 64; unlimited with --time)")
         ->check(whole_number(1, kMaxSamplesPerPixel));
     cmd->add_option("--time", o->time_limit, "Stop after this many seconds")->check(real_number(0, 31536000, true));
@@ -346,15 +398,21 @@ Command add_render_command(CLI::App& app) {
                     "(default: out/SCENE.png and out/SCENE.exr)");
     cmd->add_option("--device,-d", o->device,
                     "OpenCL device(s): an index or name substring (see 'clpath devices'), a comma-separated list "
-                    "of them, or 'all'; cpu or gpu picks the first device of that type");
+                    "of them, or 'all'; cpu or gpu picks the first device of that type")
+        ->check(non_empty(kDeviceChoices));
     cmd->add_option("--chunk", o->chunk_samples,
                     "Samples per chunk handed to a device (default: spp/64, 1 to 64; 4 with --time alone)")
         ->check(whole_number(1, 1u << 20));
     cmd->add_option("--checkpoint", o->checkpoint_seconds, "Save the running sums every this many seconds")
         ->check(real_number(0.001, 1e9));
-    cmd->add_option("--checkpoint-file", o->checkpoint_file, "Where checkpoints go (default: the first output + .checkpoint)");
+    cmd->add_option("--checkpoint-file", o->checkpoint_file,
+                    "Where checkpoints go (default: the first output + .checkpoint); its folder must exist");
     cmd->add_option("--resume", o->resume, "Continue the render saved in this checkpoint (same scene, --spp, --chunk)");
-    cmd->add_flag("--no-partial", o->no_partial, "On Ctrl-C or SIGTERM, write nothing (default: the samples so far)");
+    cmd->add_flag("--keep-checkpoint", o->keep_checkpoint,
+                  "Keep the checkpoint (written, or resumed) after the render finishes (default: it is removed)");
+    cmd->add_flag("--no-partial", o->no_partial,
+                  "On Ctrl-C or SIGTERM, write nothing (default: the samples so far); either way the exit status "
+                  "is 130 (SIGINT) or 143 (SIGTERM)");
     cmd->add_option("--leaf-size", o->leaf_size, "BVH: most triangles per leaf")
         ->check(whole_number(1, 64))
         ->capture_default_str();

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "image/image.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -43,6 +44,7 @@ glm::vec3 parse_vec3(const std::string& option, const std::string& field, const 
 
 Camera apply_camera_option(const std::string& text, Camera cam) {
     const std::string opt = "--camera";
+    cam.ortho_half_height = 0;  // --camera gives a perspective camera, also in place of a file's orthographic one
     if (text.empty()) throw UsageError(opt + " is empty; expected from=x,y,z;to=x,y,z;fov=degrees;up=x,y,z;aperture=radius;focus=distance");
     for (const auto& item : split(text, ';')) {
         if (item.empty()) continue;  // a trailing ';'
@@ -101,6 +103,12 @@ Environment parse_env_option(const std::string& text) {
         throw UsageError("--env " + text + ": " +
                          (looks_numeric ? std::string("expected a colour R,G,B or one grey value (finite, from 0 to 1000000)")
                                         : "no such file (give an equirectangular .hdr or .exr image, or a colour R,G,B)"));
+    }
+    // Not an image (or one with too few channels): bad usage, named now rather than when the render starts.
+    try {
+        check_image_readable(text);
+    } catch (const Error& e) {
+        throw UsageError("--env " + text + ": " + e.what());
     }
     env.image = text;
     return env;

@@ -18,7 +18,8 @@ Command add_view_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("view", "Open a window that refines the image while you fly through the scene");
     cmd->add_option("scene", o->scene, scene_argument_help())
         ->capture_default_str();
-    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')");
+    cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')")
+        ->check(non_empty(kDeviceChoices));
     cmd->add_option("--width", o->width, "Window width (default: the scene's image width)")->check(whole_number(1, 16384));
     cmd->add_option("--height", o->height, "Window height (default: the scene's image height)")
         ->check(whole_number(1, 16384));

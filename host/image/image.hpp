@@ -35,6 +35,11 @@ void write_image(const std::string& path, const RenderedImage& image);
 // decoded from sRGB to linear).
 Image read_image(const std::string& path);
 
+// Reads only the file's header, as read_image would: throws clpath::Error
+// naming the path if it is not an image this build reads, or has fewer than
+// three channels. For options that name an image, checked before rendering.
+void check_image_readable(const std::string& path);
+
 void write_pfm(const std::string& path, const Image& image);
 Image read_pfm(const std::string& path);
 

@@ -127,6 +127,23 @@ void write_image(const std::string& path, const RenderedImage& image) {
     }
 }
 
+void check_image_readable(const std::string& path) {
+    if (extension(path) == ".pfm") {
+        std::ifstream in(path, std::ios::binary);
+        std::string magic;
+        if (!(in >> magic) || magic != "PF") throw Error(path + ": not a colour PFM file (expected 'PF', width, height, scale)");
+        return;
+    }
+#ifdef CLPATH_WITH_OIIO
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) throw Error("cannot read " + path + " as an image: " + OIIO::geterror());
+    if (in->spec().nchannels < 3)
+        throw Error(path + ": expected an RGB image, found " + std::to_string(in->spec().nchannels) + " channels");
+#else
+    throw Error("cannot read " + path + ": this build has no OpenImageIO, so it reads .pfm only");
+#endif
+}
+
 Image read_image(const std::string& path) {
     if (extension(path) == ".pfm") return read_pfm(path);
 #ifdef CLPATH_WITH_OIIO

@@ -1,16 +1,22 @@
 #include "render/checkpoint.hpp"
 
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+
+#include <xxhash.h>
 
 #include "util/error.hpp"
 
 namespace clpath {
 namespace {
 
-constexpr char kMagic[8] = {'C', 'L', 'P', 'C', 'K', 'P', 'T', '1'};
+// Format 2 adds the checksum; format 1 files (no checksum) are refused by name.
+constexpr char kMagic[8] = {'C', 'L', 'P', 'C', 'K', 'P', 'T', '2'};
+constexpr char kMagicV1[8] = {'C', 'L', 'P', 'C', 'K', 'P', 'T', '1'};
+constexpr std::uint64_t kMaxSide = 16384;
 
 struct Header {
     char magic[8];
@@ -20,6 +26,27 @@ struct Header {
     std::uint64_t samples_per_pixel;
     std::uint64_t width, height;
     std::uint64_t done_count;
+};
+
+// The whole file's size as the header describes it: header, chunk list, sums, checksum.
+std::uint64_t described_size(const Header& h) {
+    return sizeof(Header) + h.done_count * 8 + h.width * h.height * 3 * sizeof(Fixed128) + sizeof(XXH64_hash_t);
+}
+
+// XXH3 (xxHash, Debian's libxxhash) over header, chunk list and sums, in that order.
+class Checksum {
+public:
+    Checksum() : state_(XXH3_createState()) {
+        if (!state_ || XXH3_64bits_reset(state_) != XXH_OK) throw Error("internal: xxHash could not start");
+    }
+    ~Checksum() { XXH3_freeState(state_); }
+    Checksum(const Checksum&) = delete;
+    Checksum& operator=(const Checksum&) = delete;
+    void add(const void* data, std::size_t size) { XXH3_64bits_update(state_, data, size); }
+    XXH64_hash_t value() const { return XXH3_64bits_digest(state_); }
+
+private:
+    XXH3_state_t* state_;
 };
 
 }  // namespace
@@ -34,14 +61,20 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     h.width = std::uint64_t(c.film.width());
     h.height = std::uint64_t(c.film.height());
     h.done_count = c.done_chunks.size();
+    const std::size_t chunk_bytes = c.done_chunks.size() * 8, sum_bytes = c.film.sums().size() * sizeof(Fixed128);
+    Checksum sum;
+    sum.add(&h, sizeof h);
+    sum.add(c.done_chunks.data(), chunk_bytes);
+    sum.add(c.film.sums().data(), sum_bytes);
+    const XXH64_hash_t checksum = sum.value();
     const std::string tmp = path + ".tmp";
     {
         std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
         if (!f) throw Error(path + ": cannot write the checkpoint (" + std::strerror(errno) + ")");
         f.write(reinterpret_cast<const char*>(&h), sizeof h);
-        f.write(reinterpret_cast<const char*>(c.done_chunks.data()), std::streamsize(c.done_chunks.size() * 8));
-        f.write(reinterpret_cast<const char*>(c.film.sums().data()),
-                std::streamsize(c.film.sums().size() * sizeof(Fixed128)));
+        f.write(reinterpret_cast<const char*>(c.done_chunks.data()), std::streamsize(chunk_bytes));
+        f.write(reinterpret_cast<const char*>(c.film.sums().data()), std::streamsize(sum_bytes));
+        f.write(reinterpret_cast<const char*>(&checksum), sizeof checksum);
         f.flush();
         if (!f) {
             std::remove(tmp.c_str());
@@ -57,15 +90,29 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw CheckpointError(path + ": cannot open the checkpoint: it is a folder");
     std::ifstream f(path, std::ios::binary);
-    if (!f) throw Error(path + ": cannot open the checkpoint (" + std::strerror(errno) + ")");
+    if (!f) throw CheckpointError(path + ": cannot open the checkpoint (" + std::strerror(errno) + ")");
+    const std::uintmax_t file_size = std::filesystem::file_size(path, ec);
+    if (ec) throw CheckpointError(path + ": cannot open the checkpoint (" + ec.message() + ")");
     Header h{};
     f.read(reinterpret_cast<char*>(&h), sizeof h);
-    if (!f || std::memcmp(h.magic, kMagic, sizeof kMagic) != 0)
-        throw Error(path + ": not a clpath checkpoint");
-    if (h.width == 0 || h.height == 0 || h.width > 16384 || h.height > 16384 || h.chunk_samples == 0 ||
+    if (!f) throw CheckpointError(path + ": not a clpath checkpoint (shorter than a checkpoint's header)");
+    if (std::memcmp(h.magic, kMagicV1, sizeof kMagicV1) == 0)
+        throw CheckpointError(path + ": a checkpoint of an older clpath (format 1, without a checksum); it cannot be resumed");
+    if (std::memcmp(h.magic, kMagic, sizeof kMagic) != 0) throw CheckpointError(path + ": not a clpath checkpoint");
+    // The header is checked against itself and against the file's real size
+    // before anything it describes is allocated: a forged one cannot ask for
+    // more memory than the file holds.
+    if (h.width == 0 || h.height == 0 || h.width > kMaxSide || h.height > kMaxSide || h.chunk_samples == 0 ||
         h.chunk_samples > 0xffffffffull || h.done_count > (1ull << 32))
-        throw Error(path + ": the checkpoint's header is corrupt");
+        throw CheckpointError(path + ": the checkpoint's header is corrupt (image " + std::to_string(h.width) + "x" +
+                    std::to_string(h.height) + ", chunks of " + std::to_string(h.chunk_samples) + " samples, " +
+                    std::to_string(h.done_count) + " chunks)");
+    if (described_size(h) != file_size)
+        throw CheckpointError(path + ": the checkpoint's header describes " + std::to_string(described_size(h)) +
+                    " bytes, but the file has " + std::to_string(file_size) + " (truncated, or not written by clpath)");
     Checkpoint c;
     c.render_hash = h.render_hash;
     c.plan.total_samples = h.total_samples;
@@ -74,20 +121,26 @@ Checkpoint read_checkpoint(const std::string& path) {
     f.read(reinterpret_cast<char*>(c.done_chunks.data()), std::streamsize(h.done_count * 8));
     c.film = ExactFilm(int(h.width), int(h.height));
     f.read(reinterpret_cast<char*>(c.film.sums().data()), std::streamsize(c.film.sums().size() * sizeof(Fixed128)));
-    if (!f) throw Error(path + ": the checkpoint is truncated");
-    f.peek();
-    if (!f.eof()) throw Error(path + ": the checkpoint has trailing bytes");
+    XXH64_hash_t stored = 0;
+    f.read(reinterpret_cast<char*>(&stored), sizeof stored);
+    if (!f) throw CheckpointError(path + ": the checkpoint is truncated");
+    Checksum sum;
+    sum.add(&h, sizeof h);
+    sum.add(c.done_chunks.data(), c.done_chunks.size() * 8);
+    sum.add(c.film.sums().data(), c.film.sums().size() * sizeof(Fixed128));
+    if (sum.value() != stored)
+        throw CheckpointError(path + ": the checkpoint is damaged: its xxHash checksum does not match its contents");
     c.film.set_samples_per_pixel(h.samples_per_pixel);
     for (std::size_t i = 1; i < c.done_chunks.size(); ++i)
-        if (c.done_chunks[i] <= c.done_chunks[i - 1]) throw Error(path + ": the checkpoint's chunk list is corrupt");
+        if (c.done_chunks[i] <= c.done_chunks[i - 1]) throw CheckpointError(path + ": the checkpoint's chunk list is corrupt");
     // The sample count must be what the listed chunks hold.
     std::uint64_t spp = 0;
     for (std::uint64_t k : c.done_chunks) {
         if (c.plan.total_samples && k >= c.plan.chunk_count())
-            throw Error(path + ": the checkpoint lists a chunk outside its render");
+            throw CheckpointError(path + ": the checkpoint lists a chunk outside its render");
         spp += c.plan.chunk(k).samples;
     }
-    if (spp != h.samples_per_pixel) throw Error(path + ": the checkpoint's sample count does not match its chunks");
+    if (spp != h.samples_per_pixel) throw CheckpointError(path + ": the checkpoint's sample count does not match its chunks");
     return c;
 }
 

@@ -10,8 +10,15 @@
 
 #include "render/chunks.hpp"
 #include "render/exact_film.hpp"
+#include "util/error.hpp"
 
 namespace clpath {
+
+// A checkpoint that cannot be read or does not fit the render: a message
+// about the checkpoint's file alone (the caller need not name the scene).
+struct CheckpointError : Error {
+    using Error::Error;
+};
 
 struct Checkpoint {
     std::uint64_t render_hash = 0;  // scene and settings (render/render_hash.hpp)
@@ -23,8 +30,11 @@ struct Checkpoint {
 // Written to a temporary file beside path and renamed over it, so a crash
 // mid-write leaves the previous checkpoint whole.
 void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);
-// Throws clpath::Error naming the file for anything unreadable, truncated or
-// not a clpath checkpoint.
+// The file holds a header, the finished chunks, the sums and an xxHash (XXH3)
+// checksum over all three. Throws clpath::Error naming the file for anything
+// unreadable, not a clpath checkpoint, of a size other than its header
+// describes (checked before anything is allocated), or whose checksum does
+// not match.
 Checkpoint read_checkpoint(const std::string& path);
 
 }  // namespace clpath

@@ -16,13 +16,13 @@ namespace {
 // The sums and chunks a resumed render starts from, checked against this render.
 Checkpoint resumed(const std::string& path, std::uint64_t hash, const ChunkPlan& plan, const Camera& camera) {
     Checkpoint c = read_checkpoint(path);
-    if (c.render_hash != hash) throw Error(path + ": the checkpoint is of another scene or other settings");
+    if (c.render_hash != hash) throw CheckpointError(path + ": the checkpoint is of another scene or other settings");
     if (c.plan.total_samples != plan.total_samples || c.plan.chunk_samples != plan.chunk_samples)
-        throw Error(path + ": the checkpoint is of a render of " + std::to_string(c.plan.total_samples) +
-                    " samples in chunks of " + std::to_string(c.plan.chunk_samples) + "; give the same --spp" +
-                    " and --chunk to continue it");
+        throw CheckpointError(path + ": the checkpoint is of a render of " + std::to_string(c.plan.total_samples) +
+                              " samples in chunks of " + std::to_string(c.plan.chunk_samples) + "; give the same --spp" +
+                              " and --chunk to continue it");
     if (c.film.width() != camera.width || c.film.height() != camera.height)
-        throw Error(path + ": the checkpoint is of another image size");
+        throw CheckpointError(path + ": the checkpoint is of another image size");
     return c;
 }
 
@@ -40,15 +40,17 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
     const ChunkPlan plan{o.spp, o.chunk_samples ? o.chunk_samples : default_chunk_samples(o.spp)};
     ExactFilm start;
     std::vector<std::uint64_t> done;
+    SessionResult r;
+    r.leads = lead;
     if (!o.resume_path.empty()) {
         Checkpoint c = resumed(o.resume_path, hash, plan, scene.camera);
         start = std::move(c.film);
         done = std::move(c.done_chunks);
+        r.resumed_spp = start.samples_per_pixel();
+        if (hooks.on_resumed) hooks.on_resumed(r.resumed_spp);
     }
     if (group) group->check_same(hash, "the scene and render settings");
 
-    SessionResult r;
-    r.leads = lead;
     DeviceFarm farm(devices, scene, settings, std::move(start), done);
     if (hooks.on_start) hooks.on_start(farm.bvh_stats());
     ChunkQueue queue(plan, o.time_limit, done);

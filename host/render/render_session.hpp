@@ -31,6 +31,9 @@ struct SessionOptions {
 
 // All optional; called on the calling thread, but on_chunk.
 struct SessionHooks {
+    // Once, when a resumed checkpoint has been read and checked, with its
+    // samples per pixel.
+    std::function<void(std::uint64_t spp)> on_resumed;
     // Once, when the scene is prepared and before the devices start.
     std::function<void(const BvhStats&)> on_start;
     // About every 10 ms while rendering, with the film's samples per pixel.
@@ -48,6 +51,7 @@ struct SessionResult {
     std::vector<DeviceShare> shares;  // per device (on the lead, of every process)
     BvhStats bvh;
     bool stopped = false;             // stop_requested() ended it early
+    std::uint64_t resumed_spp = 0;    // samples per pixel the resumed checkpoint held (0: not resumed)
     double wall_seconds = 0;          // from the first chunk: compiles and uploads are not in it
     std::uint64_t rays = 0, nonfinite = 0;
     std::uint64_t bytes_to_device = 0, bytes_from_device = 0;  // every device's, scene uploads included

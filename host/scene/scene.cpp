@@ -29,7 +29,9 @@ CameraData camera_data(const Camera& c) {
     const glm::vec3 view = c.target - c.eye;
     if (!(glm::length(view) > 0.0f) || !std::isfinite(glm::length(view)))
         throw Error("camera: eye and target must be distinct finite points");
-    if (!(c.vfov_degrees > 0.0f && c.vfov_degrees < 180.0f))
+    if (!(c.ortho_half_height >= 0.0f) || !std::isfinite(c.ortho_half_height))
+        throw Error("camera: an orthographic camera's half-height must be a finite number above 0");
+    if (c.ortho_half_height == 0 && !(c.vfov_degrees > 0.0f && c.vfov_degrees < 180.0f))
         throw Error("camera: vertical field of view must be in (0, 180) degrees, got " +
                     std::to_string(c.vfov_degrees));
     if (c.width <= 0 || c.height <= 0) throw Error("camera: width and height must be positive");
@@ -38,19 +40,22 @@ CameraData camera_data(const Camera& c) {
     if (!(c.focus_distance >= 0.0f) || !std::isfinite(c.focus_distance))
         throw Error("camera: the focus distance must be a finite number > 0 (or 0: the target's distance), got " +
                     std::to_string(c.focus_distance));
+    if (c.ortho_half_height > 0 && c.has_lens())
+        throw Error("camera: an orthographic camera has no lens (aperture radius must be 0)");
     const glm::vec3 forward = glm::normalize(view);
     const glm::vec3 side = glm::cross(forward, c.up);
     if (!(glm::length(side) > 1e-6f * glm::length(c.up)))
         throw Error("camera: up must not be parallel to the view direction");
     const glm::vec3 right = glm::normalize(side);
     const glm::vec3 up = glm::cross(right, forward);
-    const float ty = std::tan(glm::radians(c.vfov_degrees) * 0.5f);
+    const float ty = c.ortho_half_height > 0 ? c.ortho_half_height : std::tan(glm::radians(c.vfov_degrees) * 0.5f);
     const float tx = ty * float(c.width) / float(c.height);
     CameraData d{};
     store3(d.eye, c.eye);
     store3(d.forward, forward);
     store3(d.right, right * tx);
     store3(d.up, up * ty);
+    d.orthographic = c.ortho_half_height > 0 ? 1u : 0u;
     d.width = std::uint32_t(c.width);
     d.height = std::uint32_t(c.height);
     if (c.has_lens()) {

@@ -25,6 +25,10 @@ struct Camera {
     bool has_lens() const { return aperture_radius > 0.0f; }
     // The plane in focus: focus_distance, or the target's distance along the view.
     float resolved_focus_distance() const;
+    // Above 0: an orthographic camera whose view is this tall (half the
+    // height, in scene units; the width follows the image's aspect), and
+    // vfov_degrees is not used.
+    float ortho_half_height = 0;
 };
 
 // The ray basis the kernels read (kernels/camera.cl). Right is forward x up,
@@ -113,6 +117,9 @@ struct Scene {
     // What loading dropped, ignored or fell back on (degenerate triangles,
     // texture maps, ...), one line each; the program that loaded it prints them.
     std::vector<std::string> warnings;
+    // What loading decided on the user's behalf and why (the default
+    // presentation's lighting), one line each; printed unless output is quiet.
+    std::vector<std::string> notes;
 
     std::size_t triangle_count() const { return triangle_material.size(); }
     // Adds a material and returns its index; names must be unique.

@@ -154,6 +154,7 @@ clpath_scene_cli_test(gltf_bad_index FAIL ARGS render ${SCENE_DATA}/bad-index.gl
                       OUTPUT "bad-index.gltf: meshes\\[0\\]\\.primitives\\[0\\]\\.indices: index 9 at position 5 is out of range"
                       FORBID ${CLI_OUT}/bad-gltf.pfm)
 include(${CMAKE_CURRENT_SOURCE_DIR}/cli/usage_tests.cmake)
+include(${CMAKE_CURRENT_SOURCE_DIR}/cli/hostile_files_tests.cmake)
 
 # The progress printer's line schedule (host/cli is the program, not the
 # library: its source is built into the test).

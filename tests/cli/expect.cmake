@@ -2,7 +2,21 @@
 #   cmake -DCMD="a;b;c" -DEXPECT_FAIL=1 -DEXPECT_OUTPUT=regex -DFORBID_FILE=path -P expect.cmake
 # Optional: -DEXPECT_RC=N (the exact exit status), -DEXPECT_FILE=path (must exist after),
 # -DREJECT_OUTPUT=regex (must not match the output).
-execute_process(COMMAND ${CMD} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+# An argument written EMPTY_ARG in CMD is passed as an empty argument (a CMake
+# list cannot hold one); one such argument at most.
+list(FIND CMD "EMPTY_ARG" empty_at)
+if(empty_at GREATER_EQUAL 0)
+    list(SUBLIST CMD 0 ${empty_at} before)
+    math(EXPR after_at "${empty_at} + 1")
+    set(after "")
+    list(LENGTH CMD n)
+    if(after_at LESS n)
+        list(SUBLIST CMD ${after_at} -1 after)
+    endif()
+    execute_process(COMMAND ${before} "" ${after} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+else()
+    execute_process(COMMAND ${CMD} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+endif()
 set(all "${out}${err}")
 message("${all}")
 if(EXPECT_FAIL)

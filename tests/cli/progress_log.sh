@@ -44,7 +44,7 @@ kill -INT $pid
 rc=0
 wait $pid || rc=$?
 cat "$log"
-[ $rc -eq 0 ] || { echo "interrupted render exited $rc"; exit 1; }
+[ $rc -eq 130 ] || { echo "a render interrupted by SIGINT exited $rc, not 130"; exit 1; }
 
 /usr/bin/env python3 - "$log" "$interval_ms" "$lines" <<'EOF'
 import re, sys

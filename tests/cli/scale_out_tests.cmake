@@ -31,7 +31,16 @@ clpath_cli_test(scale_device_twice FAIL ARGS render --spp 1 --device 0,0 -o ${SC
 clpath_cli_test(scale_device_missing_in_list FAIL ARGS render --spp 1 --device 0,9 -o ${SCALE_OUT}/missing.pfm
                 OUTPUT "9: no device with that index" FORBID ${SCALE_OUT}/missing.pfm)
 clpath_cli_test(scale_resume_missing FAIL ARGS render --spp 4 --resume ${SCALE_OUT}/no.ckpt -o ${SCALE_OUT}/r.pfm
-                OUTPUT "no.ckpt: cannot open the checkpoint" FORBID ${SCALE_OUT}/r.pfm)
+                OUTPUT "--resume .*no\\.ckpt: no such file" FORBID ${SCALE_OUT}/r.pfm)
+
+# The checkpoint's folder is checked before anything renders (it used to fail at the first save).
+clpath_usage_test(checkpoint_folder_missing RC 2 ARGS render --spp 4 --checkpoint 1
+                  --checkpoint-file ${SCALE_OUT}/no/such/folder/c.ckpt -o ${SCALE_OUT}/cf.pfm FORBID ${SCALE_OUT}/cf.pfm
+                  OUTPUT "clpath: error: --checkpoint-file .*/no/such/folder/c\\.ckpt: folder .*/no/such/folder does not exist"
+                  REJECT "rendering 'cornell'")
+clpath_usage_test(checkpoint_file_is_folder RC 2 ARGS render --spp 4 --checkpoint 1 --checkpoint-file ${SCALE_OUT}
+                  -o ${SCALE_OUT}/cf.pfm FORBID ${SCALE_OUT}/cf.pfm
+                  OUTPUT "clpath: error: --checkpoint-file .*scale-out-test: is a folder \\(name a file in it\\)")
 
 add_test(NAME cli.scale.interrupt_checkpoint_resume
          COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/interrupt_resume.sh $<TARGET_FILE:clpath> ${SCALE_OUT}/interrupt)

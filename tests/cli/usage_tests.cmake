@@ -203,3 +203,21 @@ clpath_usage_test(obj_unused_channel_warns RC 0 ARGS render ${CLI_DATA}/glass-ni
 clpath_usage_test(obj_mtl_bad_number RC 1 ARGS render ${CLI_DATA}/bad-ns.obj ${SMALL} -o ${USAGE_OUT}/ns.pfm
                   OUTPUT "^clpath: error: .*bad-ns\\.mtl:3: Ns: 'abc' is not a number" FORBID ${USAGE_OUT}/ns.pfm)
 
+
+# --- usage errors that were accepted or exited 1 --------------------------------------------
+clpath_usage_test(device_empty RC 2 ARGS render ${SMALL} --device EMPTY_ARG -o ${USAGE_OUT}/dev-empty.pfm
+                  OUTPUT "^clpath: error: --device: an empty value; give a device index or name, cpu, gpu or all")
+clpath_usage_test(bench_device_empty RC 2 ARGS bench rays cornell --quick --device EMPTY_ARG
+                  OUTPUT "^clpath: error: --device: an empty value; give a device index or name")
+clpath_usage_test(device_twice RC 2 ARGS render ${SMALL} --device 0,0 -o ${USAGE_OUT}/dev-twice.pfm FORBID ${USAGE_OUT}/dev-twice.pfm
+                  OUTPUT "clpath: error: --device '0,0': device \\[0\\] .* is named twice \\('0'\\)")
+clpath_usage_test(device_empty_item RC 2 ARGS render ${SMALL} --device 0,,0 -o ${USAGE_OUT}/dev-item.pfm
+                  OUTPUT "clpath: error: --device '0,,0': an empty item in the device list")
+clpath_usage_test(env_not_an_image RC 2 ARGS render ${SMALL} --env ${CLI_DATA}/not-an-image.png -o ${USAGE_OUT}/env-text.pfm
+                  FORBID ${USAGE_OUT}/env-text.pfm OUTPUT "clpath: error: --env .*not-an-image\\.png: cannot read .*not-an-image\\.png as an image")
+clpath_usage_test(gltf_camera_on_obj RC 2 ARGS render ${CLI_DATA}/yz-plate.obj ${SMALL} --gltf-camera 0 -o ${USAGE_OUT}/gc-obj.pfm
+                  FORBID ${USAGE_OUT}/gc-obj.pfm OUTPUT "^clpath: error: --gltf-camera 0: .*yz-plate\\.obj is not a glTF model")
+clpath_usage_test(gltf_camera_on_builtin RC 2 ARGS render cornell ${SMALL} --gltf-camera front -o ${USAGE_OUT}/gc-b.pfm
+                  OUTPUT "^clpath: error: --gltf-camera front: cornell is not a glTF model")
+clpath_usage_test(gltf_camera_empty RC 2 ARGS render ${TWO_CAMERAS} ${SMALL} --gltf-camera EMPTY_ARG -o ${USAGE_OUT}/gc-e.pfm
+                  OUTPUT "^clpath: error: --gltf-camera: an empty value; give a camera's name or index")

@@ -24,6 +24,7 @@
     F(AliasEntry, prob) F(AliasEntry, alias) F(AliasEntry, pmf) F(AliasEntry, pad) \
     F(CameraData, eye) F(CameraData, width) F(CameraData, forward) F(CameraData, height) F(CameraData, right) \
     F(CameraData, lens_radius) F(CameraData, up) F(CameraData, focus_distance) \
+    F(CameraData, orthographic) F(CameraData, pad0) F(CameraData, pad1) F(CameraData, pad2) \
     F(FrameParams, camera) F(FrameParams, seed) F(FrameParams, first_sample) F(FrameParams, samples) \
     F(FrameParams, rr_rule) F(FrameParams, rr_min_depth) F(FrameParams, pixel_offset) \
     F(FrameParams, pixel_count) F(FrameParams, light_count) F(FrameParams, env_light) F(FrameParams, ao_distance) \

@@ -1,6 +1,9 @@
 // Checkpoint files: what is written is read back exactly; anything else is refused by name.
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -60,6 +63,97 @@ TEST(Checkpoint, RefusesBrokenFiles) {
     EXPECT_THROW(read_checkpoint(path), Error);
     std::filesystem::remove(path);
     EXPECT_THROW(read_checkpoint(path), Error);  // missing
+}
+
+std::string message_of(const std::string& path) {
+    try {
+        read_checkpoint(path);
+    } catch (const CheckpointError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "expected a CheckpointError for " << path;
+    return "";
+}
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// The checkpoint's bytes, one bit flipped at `offset` (counted from the end when negative).
+void flip_bit(const std::string& path, long long offset) {
+    std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
+    const auto size = (long long)std::filesystem::file_size(path);
+    f.seekg(offset < 0 ? size + offset : offset);
+    char c;
+    f.get(c);
+    f.seekp(offset < 0 ? size + offset : offset);
+    f.put(char(c ^ 0x10));
+}
+
+TEST(Checkpoint, ChecksumCatchesAFlippedBit) {
+    const std::string path = temp_path("flipped");
+    // One bit in the sums, in the chunk list, in the header's render hash, in the checksum itself.
+    const long long header = 64, sums_end = -8;
+    for (long long offset : {sums_end - 20, header + 4, 8LL, -3LL}) {
+        write_checkpoint(path, sample_checkpoint());
+        flip_bit(path, offset);
+        const std::string e = message_of(path);
+        EXPECT_TRUE(has(e, path + ": the checkpoint is damaged: its xxHash checksum does not match its contents")) << offset << ": " << e;
+    }
+    // Control: the file as written reads back.
+    write_checkpoint(path, sample_checkpoint());
+    EXPECT_EQ(read_checkpoint(path).film.sums(), sample_checkpoint().film.sums());
+    std::filesystem::remove(path);
+}
+
+TEST(Checkpoint, ForgedHeaderIsRefusedBeforeAllocating) {
+    // A header claiming a 16384 x 16384 image (12 GiB of sums) and 2^32 chunks
+    // (32 GiB of chunk list) in a file of a few hundred bytes. With the address
+    // space capped well below that, an allocation before the size check would
+    // throw std::bad_alloc instead of the message.
+    const std::string path = temp_path("forged");
+    write_checkpoint(path, sample_checkpoint());
+    {
+        std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
+        const std::uint64_t side = 16384, chunks = 1ull << 32;
+        f.seekp(40);  // width, height, then the chunk count
+        f.write(reinterpret_cast<const char*>(&side), 8);
+        f.write(reinterpret_cast<const char*>(&side), 8);
+        f.write(reinterpret_cast<const char*>(&chunks), 8);
+    }
+    rlimit old{};
+    ASSERT_EQ(getrlimit(RLIMIT_AS, &old), 0);
+    rlimit capped = old;
+    capped.rlim_cur = rlim_t(4) << 30;  // 4 GiB: the test's own needs and none of the forged ones
+    ASSERT_EQ(setrlimit(RLIMIT_AS, &capped), 0);
+    std::string e;
+    try {
+        read_checkpoint(path);
+    } catch (const CheckpointError& x) {
+        e = x.what();
+    } catch (const std::bad_alloc&) {
+        e = "std::bad_alloc: the header was trusted";
+    }
+    setrlimit(RLIMIT_AS, &old);
+    EXPECT_TRUE(has(e, path + ": the checkpoint's header describes 47244640328 bytes, but the file has ")) << e;
+    std::filesystem::remove(path);
+}
+
+TEST(Checkpoint, SizeAndFormatAreChecked) {
+    const std::string path = temp_path("size");
+    write_checkpoint(path, sample_checkpoint());
+    { std::ofstream(path, std::ios::binary | std::ios::app) << "x"; }
+    EXPECT_TRUE(has(message_of(path), "but the file has ")) << message_of(path);
+    write_checkpoint(path, sample_checkpoint());
+    std::filesystem::resize_file(path, std::filesystem::file_size(path) - 8);  // the checksum cut off
+    EXPECT_TRUE(has(message_of(path), "but the file has ")) << message_of(path);
+    // A format-1 file (written before checkpoints had a checksum) is named as such.
+    write_checkpoint(path, sample_checkpoint());
+    {
+        std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
+        f.seekp(7);
+        f.put('1');
+    }
+    EXPECT_TRUE(has(message_of(path), "a checkpoint of an older clpath (format 1, without a checksum)")) << message_of(path);
+    std::filesystem::remove(path);
 }
 
 }  // namespace

@@ -172,13 +172,15 @@ TEST(Presentation, GltfCameraIsKept) {
     }
 }
 
-// Punctual lights and emitting materials are the model's own lighting: no
-// sun and, as for an emitting OBJ, no ground unless --env replaces the lighting.
+// Punctual lights and emitting materials strong enough to light the model
+// are its own lighting: no sun and, as for an emitting OBJ, no ground unless
+// --env replaces the lighting.
 TEST(Presentation, GltfLightsOrEmittersReplaceSunAndGround) {
     const Scene obj = bare(kCube);
     test::GltfBuilder lit = gltf_cube();
     lit.doc["extensionsUsed"] = {"KHR_lights_punctual"};
-    lit.doc["extensions"] = {{"KHR_lights_punctual", {{"lights", nlohmann::json::array({nlohmann::json{{"type", "point"}, {"intensity", 5}}})}}}};
+    // 50 W/sr from 2.6 m: about 7 W/m^2 at the cube, twice the sky and sun's.
+    lit.doc["extensions"] = {{"KHR_lights_punctual", {{"lights", nlohmann::json::array({nlohmann::json{{"type", "point"}, {"intensity", 50}}})}}}};
     lit.doc["nodes"].push_back({{"translation", {0.5, 3, 0.5}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
     test::GltfBuilder glowing = gltf_cube();
     glowing.doc["materials"][0]["emissiveFactor"] = {1, 1, 1};
@@ -192,6 +194,8 @@ TEST(Presentation, GltfLightsOrEmittersReplaceSunAndGround) {
         EXPECT_EQ(s.triangle_count(), 12u) << "no ground";
         EXPECT_FALSE(s.environment.emits()) << "no sky";
         expect_near(s.camera.eye, obj.camera.eye);  // still framed
+        ASSERT_EQ(s.notes.size(), 1u);
+        EXPECT_NE(s.notes[0].find("own lights and emitters light it"), std::string::npos) << s.notes[0];
         PresentationOptions p;
         p.environment = Environment{};
         p.environment->color = glm::vec3(0.25f);
@@ -199,6 +203,91 @@ TEST(Presentation, GltfLightsOrEmittersReplaceSunAndGround) {
         EXPECT_EQ(e.triangle_count(), 12u + 2u) << "--env: the ground is added";
         EXPECT_EQ(e.lights.size(), file_lights);
         EXPECT_EQ(e.environment.color, glm::vec3(0.25f));
+    }
+}
+
+// The cube with one emitting material whose emission texture is black but
+// for one texel; `lit_triangles` of its triangles sample that texel.
+Scene cube_with_emission_texture(std::size_t lit_triangles) {
+    PresentationOptions none;
+    none.ground = false;
+    Scene s = bare(kCube, none);  // the cube alone, then stripped of the presentation's lighting
+    s.lights.clear();
+    s.environment = Environment{};
+    s.notes.clear();
+    SceneMaterial m = s.materials.at(0);
+    m.emission[0] = m.emission[1] = m.emission[2] = 1;  // emissiveFactor 1, as the Damaged Helmet's
+    Texture t;
+    t.name = "display";
+    t.width = 2;
+    t.height = 1;
+    t.rgba8 = {0, 0, 0, 255, 255, 255, 255, 255};
+    s.textures = {t};
+    m.texture[CLP_TEX_EMISSION] = 0;
+    for (auto& mm : s.materials) mm = m;
+    s.uvs.assign(s.vertices.size(), glm::vec2(0.25f, 0.5f));  // the black texel
+    for (std::size_t t = 0; t < lit_triangles; ++t)
+        for (int k = 0; k < 3; ++k) s.uvs[3 * t + k] = glm::vec2(0.75f, 0.5f);
+    return s;
+}
+
+// The Damaged Helmet's case: every material "emits" (a factor of 1), but its
+// texture is black save a small display. The presentation weighs the light
+// the emitters really give and adds the sky, the sun and the ground; the
+// control, the whole texture lit, keeps the model's own lighting.
+TEST(Presentation, WeakEmittersGetSkySunAndGround) {
+    Scene weak = cube_with_emission_texture(1);
+    present_model(weak, {}, false);
+    ASSERT_EQ(weak.lights.size(), 1u) << "the sun is added";
+    EXPECT_TRUE(weak.environment.emits()) << "the sky is added";
+    EXPECT_EQ(weak.triangle_count(), 12u + 2u) << "the ground is added";
+    ASSERT_EQ(weak.notes.size(), 1u);
+    EXPECT_NE(weak.notes[0].find("are added beside them"), std::string::npos) << weak.notes[0];
+    EXPECT_TRUE(emits(weak.materials[0])) << "the display still shines";
+
+    Scene strong = cube_with_emission_texture(12);
+    present_model(strong, {}, false);
+    EXPECT_TRUE(strong.lights.empty());
+    EXPECT_FALSE(strong.environment.emits());
+    EXPECT_EQ(strong.triangle_count(), 12u);
+    ASSERT_EQ(strong.notes.size(), 1u);
+    EXPECT_NE(strong.notes[0].find("light it"), std::string::npos) << strong.notes[0];
+}
+
+// A weak point light (a tenth of the threshold) is kept, with the sky and sun beside it.
+TEST(Presentation, WeakPunctualLightGetsSkySunAndGround) {
+    PresentationOptions none;
+    none.ground = false;
+    Scene s = bare(kCube, none);
+    s.lights.clear();
+    s.environment = Environment{};
+    s.notes.clear();
+    PunctualLight l;
+    l.position = glm::vec3(0.5f, 3, 0.5f);
+    const float d2 = glm::dot(l.position - glm::vec3(0.5f), l.position - glm::vec3(0.5f));
+    l.intensity = glm::vec3(0.1f * presentation::kOwnLightEnough * presentation_irradiance() * d2);
+    s.lights.push_back(l);
+    present_model(s, {}, false);
+    ASSERT_EQ(s.lights.size(), 2u);
+    EXPECT_EQ(s.lights[1].type, PunctualLight::Type::Directional);
+    EXPECT_TRUE(s.environment.emits());
+}
+
+// The default view is never steeper than kMaxElevation, and the model's
+// bounding sphere fills the frame's height up to kFramingMargin.
+TEST(Presentation, FramesTheBoundingSphereFromAShallowView) {
+    for (const char* obj : {kCube, kYzPlate, kXyPlate}) {
+        const Scene s = bare(obj);
+        const glm::vec3 view = s.camera.target - s.camera.eye;
+        const float elevation = glm::degrees(std::asin(-view.y / glm::length(view)));
+        EXPECT_LE(elevation, presentation::kMaxElevation + 1e-3f);
+        EXPECT_GE(elevation, 0.0f);
+        float r = 0;
+        for (std::size_t i = 0; i < 3 * (s.triangle_count() - 2); ++i)  // the model's, not the ground's
+            r = std::max(r, glm::length(s.vertices[i] - s.camera.target));
+        const float half_angle = std::asin(r / glm::length(view));
+        const float half_fov = std::atan(std::tan(glm::radians(s.camera.vfov_degrees) / 2));
+        EXPECT_NEAR(std::tan(half_angle) / std::tan(half_fov), presentation::kFramingMargin, 2e-3f) << obj;
     }
 }
 
@@ -319,6 +408,15 @@ TEST(PresentationRender, BareGltfShowsModelGroundAndShadow) {
 
 TEST(PresentationRender, GltfControlWithoutTheSunHasNoShadow) {
     expect_no_shadow_without_the_sun(small(bare_gltf(gltf_cube())));
+}
+
+// The weakly emitting cube as a user gets it: lit like a bare mesh, with
+// the ground and the model's shadow (it rendered black before its emitters'
+// light was weighed).
+TEST(PresentationRender, WeakEmitterIsLitLikeABareMesh) {
+    Scene s = cube_with_emission_texture(1);
+    present_model(s, {}, false);
+    expect_model_ground_and_shadow(small(s));
 }
 
 TEST(PresentationRender, FlatYzModelIsVisible) {

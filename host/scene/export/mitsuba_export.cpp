@@ -246,6 +246,9 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
     }
 
     const Camera& c = scene.camera;
+    if (c.ortho_half_height > 0)
+        throw Error("the scene's camera is orthographic, which the exported file's camera cannot describe (a pinhole "
+                    "camera only)");
     const SceneRenderDefaults& r = scene.render;
     // A thin lens is Mitsuba's thinlens sensor: the same disk of that radius
     // about the eye, focused on the plane at that distance along the view.

@@ -118,6 +118,9 @@ ObjExport export_obj_scene(const Scene& scene, const std::string& stem, const st
         mapping += std::string(mapping.empty() ? "" : ", ") + jsonf::quote(names[i]) + ": " + jsonf::quote(names[i]);
     }
     const Camera& c = scene.camera;
+    if (c.ortho_half_height > 0)
+        throw Error("the scene's camera is orthographic, which the exported file's camera cannot describe (a pinhole "
+                    "camera only)");
     const SceneRenderDefaults& r = scene.render;
     out.json = "{\n  \"name\": " + jsonf::quote(scene.name) + ",\n  \"description\": " +
                jsonf::quote("Exported by clpath export from " + source +

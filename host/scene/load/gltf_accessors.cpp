@@ -77,6 +77,18 @@ std::vector<float> View::floats(int width, float fill) const {
             for (int c = components; c < width; ++c) out[i * std::size_t(width) + std::size_t(c)] = fill;
     if (!data) return out;  // no buffer view: the accessor's own components are zeros
     float* o = out.data();
+    if (!normalized && component_type != TINYGLTF_COMPONENT_TYPE_FLOAT) {
+        // KHR_mesh_quantization's unnormalized integers: their values as they are
+        // (the node's transform or a texture transform scales them back).
+        switch (component_type) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: decode_rows<std::uint8_t>(*this, width, o, [](std::uint8_t x) { return float(x); }); break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: decode_rows<std::uint16_t>(*this, width, o, [](std::uint16_t x) { return float(x); }); break;
+        case TINYGLTF_COMPONENT_TYPE_BYTE: decode_rows<std::int8_t>(*this, width, o, [](std::int8_t x) { return float(x); }); break;
+        case TINYGLTF_COMPONENT_TYPE_SHORT: decode_rows<std::int16_t>(*this, width, o, [](std::int16_t x) { return float(x); }); break;
+        default: break;
+        }
+        return out;
+    }
     switch (component_type) {
     case TINYGLTF_COMPONENT_TYPE_FLOAT: decode_rows<float>(*this, width, o, [](float x) { return x; }); break;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
@@ -114,7 +126,7 @@ std::vector<std::uint32_t> View::indices() const {
 }
 
 View view(const Source& src, int index, const std::string& path, int type, int alt_type,
-          const std::vector<int>& allowed, bool integers) {
+          const std::vector<int>& allowed, bool integers, bool plain_integers) {
     const auto& m = src.model;
     if (index < 0 || std::size_t(index) >= m.accessors.size())
         src.fail(path, "accessor " + std::to_string(index) + " does not exist (the file has " +
@@ -130,7 +142,7 @@ View view(const Source& src, int index, const std::string& path, int type, int a
     bool ok = false;
     for (int t : allowed) ok = ok || t == a.componentType;
     if (!ok) src.fail(where, "component type " + std::to_string(a.componentType) + " is not allowed here");
-    if (!integers && a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !a.normalized)
+    if (!integers && a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !a.normalized && !plain_integers)
         src.fail(where, "integer components must be normalized here");
     v.component_type = a.componentType;
     v.components = type_components(a.type);

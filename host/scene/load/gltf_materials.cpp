@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <optional>
 
 #include "scene/load/gltf_parts.hpp"
 #include "util/error.hpp"
@@ -20,10 +21,14 @@ std::uint32_t wrap_mode(int gl) {
 }
 
 // A file name whose extension tells OpenImageIO the format.
-std::string format_hint(const tinygltf::Image& img, std::size_t index) {
+// The name the decoder gets: its extension is the format hint, and its
+// messages name it, so an external file is named by the path it resolved to.
+std::string format_hint(const tinygltf::Image& img, std::size_t index, const std::string& file) {
+    const bool external = !img.uri.empty() && img.uri.rfind("data:", 0) != 0 && img.uri.rfind(kDataUriPrefix, 0) != 0;
+    if (external && std::filesystem::path(uri_path(file, img.uri)).has_extension()) return uri_path(file, img.uri);
     if (img.mimeType == "image/png") return "image.png";
     if (img.mimeType == "image/jpeg") return "image.jpg";
-    if (!img.uri.empty() && img.uri.rfind("data:", 0) != 0) return std::filesystem::path(img.uri).filename().string();
+    if (external) return uri_path(file, img.uri);
     if (img.uri.rfind("data:image/png", 0) == 0) return "image.png";
     if (img.uri.rfind("data:image/jpeg", 0) == 0) return "image.jpg";
     return "images[" + std::to_string(index) + "]";
@@ -38,6 +43,27 @@ float extension_number(const tinygltf::ExtensionMap& ext, const char* name, cons
     auto it = ext.find(name);
     if (it == ext.end() || !it->second.IsObject() || !it->second.Has(key) || !it->second.Get(key).IsNumber()) return fallback;
     return float(it->second.Get(key).GetNumberAsDouble());
+}
+
+// KHR_texture_transform's matrix, uv' = T * R * S * uv (the extension's
+// specification, with its rotation's sign), or nothing when absent.
+std::optional<glm::mat3> uv_transform(const tinygltf::ExtensionMap& ext) {
+    auto it = ext.find("KHR_texture_transform");
+    if (it == ext.end() || !it->second.IsObject()) return std::nullopt;
+    const tinygltf::Value& v = it->second;
+    auto pair = [&](const char* key, float fallback) {
+        glm::vec2 out(fallback);
+        if (v.Has(key) && v.Get(key).IsArray() && v.Get(key).ArrayLen() == 2)
+            for (int i = 0; i < 2; ++i) out[i] = float(v.Get(key).Get(i).GetNumberAsDouble());
+        return out;
+    };
+    const glm::vec2 offset = pair("offset", 0), scale = pair("scale", 1);
+    const float r = v.Has("rotation") && v.Get("rotation").IsNumber() ? float(v.Get("rotation").GetNumberAsDouble()) : 0.0f;
+    // glm is column-major: each glm::vec3 below is a column.
+    const glm::mat3 t(glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(offset, 1));
+    const glm::mat3 rot(glm::vec3(std::cos(r), -std::sin(r), 0), glm::vec3(std::sin(r), std::cos(r), 0), glm::vec3(0, 0, 1));
+    const glm::mat3 s(glm::vec3(scale.x, 0, 0), glm::vec3(0, scale.y, 0), glm::vec3(0, 0, 1));
+    return t * rot * s;
 }
 
 class Reader {
@@ -65,6 +91,13 @@ public:
 
         const tinygltf::Image& img = m.images[std::size_t(t.source)];
         const std::string ip = "images[" + std::to_string(t.source) + "]";
+        if (img.image.empty() && !img.uri.empty() && img.uri.rfind("data:", 0) != 0 && img.uri.rfind(kDataUriPrefix, 0) != 0) {
+            // The file is missing (check_uris warned, naming the path): a neutral texture, that is none.
+            const std::string full = uri_path(src_.file, img.uri);
+            std::error_code ec;
+            const bool exists = src_.options.file_exists ? src_.options.file_exists(full) : std::filesystem::exists(full, ec);
+            if (!exists) return cache_[key] = CLP_NO_TEXTURE;
+        }
         if (img.image.empty())
             src_.fail(ip, "no image data (" + (img.uri.empty() ? "bufferView " + std::to_string(img.bufferView)
                                                                : "'" + img.uri.substr(0, 80) + "'") + ")");
@@ -72,7 +105,7 @@ public:
         try {
             TextureImage ti = src_.options.decode_texture(
                 std::string(reinterpret_cast<const char*>(img.image.data()), img.image.size()),
-                format_hint(img, std::size_t(t.source)));
+                format_hint(img, std::size_t(t.source), src_.file));
             if (ti.width <= 0 || ti.height <= 0 ||
                 (ti.is_float ? ti.rgba32.size() : ti.rgba8.size()) != std::size_t(ti.width) * std::size_t(ti.height) * 4)
                 throw Error("the decoder returned no texels");
@@ -131,7 +164,32 @@ public:
         m.texture[CLP_TEX_EMISSION] = texture(gm.emissiveTexture.index, gm.emissiveTexture.texCoord, p + ".emissiveTexture");
         m.normal_scale = float(gm.normalTexture.scale);
         if (!std::isfinite(m.normal_scale)) src_.fail(p + ".normalTexture.scale", "must be finite");
-        return {gm.name.empty() ? p : gm.name, m};
+        GltfMaterial out{gm.name.empty() ? p : gm.name, m, std::nullopt};
+        // One set of texture coordinates per vertex: the first texture's transform
+        // is applied to them (quantisers such as gltfpack give every texture of a
+        // material the same one); a different one on another texture is a warning.
+        const std::pair<const tinygltf::TextureInfo*, const char*> infos[] = {
+            {&pbr.baseColorTexture, ".pbrMetallicRoughness.baseColorTexture"},
+            {&pbr.metallicRoughnessTexture, ".pbrMetallicRoughness.metallicRoughnessTexture"}};
+        std::optional<glm::mat3> first;
+        std::string first_path;
+        auto consider = [&](const tinygltf::ExtensionMap& ext, int index, const std::string& tp) {
+            if (index < 0) return;
+            const std::optional<glm::mat3> t = uv_transform(ext);
+            if (first_path.empty()) {
+                first = t;
+                first_path = tp;
+            } else if (t.value_or(glm::mat3(1)) != first.value_or(glm::mat3(1))) {
+                out_.warnings.push_back(src_.file + ": " + tp + ": its KHR_texture_transform differs from " + first_path +
+                                        "'s; clpath uses " + first_path + "'s for every texture of the material");
+            }
+        };
+        for (const auto& [info, suffix] : infos) consider(info->extensions, info->index, p + suffix);
+        consider(gm.normalTexture.extensions, gm.normalTexture.index, p + ".normalTexture");
+        consider(gm.occlusionTexture.extensions, -1, p + ".occlusionTexture");
+        consider(gm.emissiveTexture.extensions, gm.emissiveTexture.index, p + ".emissiveTexture");
+        out.uv_transform = first;
+        return out;
     }
 
 private:

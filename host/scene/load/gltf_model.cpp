@@ -11,6 +11,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
 
+#include "scene/load/gltf_document.hpp"
 #include "scene/load/gltf_parts.hpp"
 #include "scene/load/gltf_support.hpp"
 #include "util/error.hpp"
@@ -26,113 +27,13 @@ constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
 constexpr int kUByte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
 constexpr int kUShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
 constexpr int kUInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-constexpr std::size_t kMaxNodeDepth = 256;
+constexpr int kByte = TINYGLTF_COMPONENT_TYPE_BYTE;
+constexpr int kShort = TINYGLTF_COMPONENT_TYPE_SHORT;
 
 std::string lower_extension(const std::string& file) {
     std::string e = fs::path(file).extension().string();
     std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return e;
-}
-
-// %XX escapes in a URI, as the glTF specification allows in relative paths.
-std::string percent_decode(const std::string& s, bool& ok) {
-    std::string out;
-    ok = true;
-    for (std::size_t i = 0; i < s.size(); ++i) {
-        if (s[i] != '%') {
-            out += s[i];
-            continue;
-        }
-        if (i + 2 >= s.size() || !std::isxdigit(static_cast<unsigned char>(s[i + 1])) ||
-            !std::isxdigit(static_cast<unsigned char>(s[i + 2]))) {
-            ok = false;
-            return s;
-        }
-        out += char(std::stoi(s.substr(i + 1, 2), nullptr, 16));
-        i += 2;
-    }
-    return out;
-}
-
-// The files of one load, for tinygltf's file-system callbacks: everything is
-// read through LoadOptions::read_file, so tests and fuzzers work from memory.
-// Decoded data URIs are served under their stand-in names (gltf::extract_data_uris).
-struct Files {
-    const LoadOptions* options;
-    std::string last_error;
-    gltf::DataUris* data_uris = nullptr;
-};
-
-bool fs_exists(const std::string& path, void* user) {
-    auto* f = static_cast<Files*>(user);
-    if (f->data_uris && gltf::find_data_uri(*f->data_uris, path)) return true;
-    if (f->options->file_exists) return f->options->file_exists(path);
-    std::error_code ec;
-    return fs::is_regular_file(path, ec);
-}
-std::string fs_expand(const std::string& path, void*) { return path; }
-bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
-    auto* f = static_cast<Files*>(user);
-    if (f->data_uris)
-        if (auto* bytes = gltf::find_data_uri(*f->data_uris, path)) {
-            *out = std::move(*bytes);  // read once, by the one buffer that names it
-            return true;
-        }
-    try {
-        const std::string s = f->options->read_file(path);
-        out->assign(s.begin(), s.end());
-        return true;
-    } catch (const Error& e) {
-        f->last_error = e.what();
-        if (err) *err += e.what();
-        return false;
-    }
-}
-bool fs_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
-    if (err) *err += "writing is not supported";
-    return false;
-}
-
-// Images are kept encoded here and decoded (through OpenImageIO) only when a
-// material uses them, with a message that names the use.
-bool keep_encoded(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
-                  int size, void*) {
-    image->image.assign(bytes, bytes + size);
-    image->as_is = true;
-    return true;
-}
-
-// The external files a .gltf names, checked before tinygltf reads them, so
-// that a missing buffer or image, or a URI that is not a relative path or a
-// base64 data URI, is reported by its glTF path.
-void check_uris(const std::string& text, const std::string& file, const LoadOptions& options, gltf::DataUris& uris) {
-    nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
-    if (doc.is_discarded() || !doc.is_object()) return;  // tinygltf reports the syntax error
-    const fs::path dir = fs::path(file).parent_path();
-    for (const char* section : {"buffers", "images"}) {
-        auto it = doc.find(section);
-        if (it == doc.end() || !it->is_array()) continue;
-        for (std::size_t i = 0; i < it->size(); ++i) {
-            const auto& e = (*it)[i];
-            if (!e.is_object() || !e.contains("uri") || !e["uri"].is_string()) continue;
-            const std::string uri = e["uri"].get<std::string>();
-            const std::string path = std::string(section) + "[" + std::to_string(i) + "].uri";
-            auto fail = [&](const std::string& what) { throw Error(file + ": " + path + ": " + what); };
-            if (uri.rfind("data:", 0) == 0) {
-                if (uri.find(";base64,") == std::string::npos) fail("a data URI must be base64 (data:...;base64,...)");
-                continue;
-            }
-            const auto colon = uri.find(':');
-            if (uri.empty() || (colon != std::string::npos && colon < uri.find('/')) || uri[0] == '/')
-                fail("'" + uri.substr(0, 80) + "' is not a relative file path or a data URI");
-            bool ok;
-            const std::string name = percent_decode(uri, ok);
-            if (!ok) fail("'" + uri.substr(0, 80) + "' has a bad %-escape");
-            const std::string full = (dir / name).lexically_normal().string();
-            Files f{&options, {}, &uris};
-            if (!fs_exists(full, &f)) fail(full + ": no such file");
-        }
-    }
 }
 
 glm::mat4 node_matrix(const tinygltf::Node& n) {
@@ -214,7 +115,9 @@ GltfPrimitive read_primitive(const Source& src, const tinygltf::Primitive& p, co
     const std::string ap = path + ".attributes.";
     const int pos_i = attr("POSITION");
     if (pos_i < 0) src.fail(ap + "POSITION", "a primitive needs positions");
-    const View pos = gltf::view(src, pos_i, ap + "POSITION", TINYGLTF_TYPE_VEC3, -1, {kFloat});
+    // The component types are KHR_mesh_quantization's (a superset of the core's).
+    const View pos = gltf::view(src, pos_i, ap + "POSITION", TINYGLTF_TYPE_VEC3, -1, {kFloat, kByte, kUByte, kShort, kUShort},
+                                false, true);
     const std::size_t n = pos.count;
     auto same_count = [&](const View& v) {
         if (v.count != n)
@@ -222,11 +125,13 @@ GltfPrimitive read_primitive(const Source& src, const tinygltf::Primitive& p, co
         return v;
     };
     std::optional<View> nrm, tan, uv, col;
-    if (int i = attr("NORMAL"); i >= 0) nrm = same_count(gltf::view(src, i, ap + "NORMAL", TINYGLTF_TYPE_VEC3, -1, {kFloat}));
+    if (int i = attr("NORMAL"); i >= 0)
+        nrm = same_count(gltf::view(src, i, ap + "NORMAL", TINYGLTF_TYPE_VEC3, -1, {kFloat, kByte, kShort}));
     if (int i = attr("TANGENT"); i >= 0)
-        tan = same_count(gltf::view(src, i, ap + "TANGENT", TINYGLTF_TYPE_VEC4, -1, {kFloat}));
+        tan = same_count(gltf::view(src, i, ap + "TANGENT", TINYGLTF_TYPE_VEC4, -1, {kFloat, kByte, kShort}));
     if (int i = attr("TEXCOORD_0"); i >= 0)
-        uv = same_count(gltf::view(src, i, ap + "TEXCOORD_0", TINYGLTF_TYPE_VEC2, -1, {kFloat, kUByte, kUShort}));
+        uv = same_count(gltf::view(src, i, ap + "TEXCOORD_0", TINYGLTF_TYPE_VEC2, -1, {kFloat, kByte, kUByte, kShort, kUShort},
+                                   false, true));
     if (int i = attr("COLOR_0"); i >= 0)
         col = same_count(gltf::view(src, i, ap + "COLOR_0", TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4, {kFloat, kUByte, kUShort}));
     if (p.material >= 0 && std::size_t(p.material) >= src.model.materials.size())
@@ -287,16 +192,22 @@ PunctualLight read_light(const Source& src, int index, const glm::mat4& world, c
 Camera read_camera(const Source& src, int index, const glm::mat4& world, const std::string& path) {
     const tinygltf::Camera& gc = src.model.cameras[std::size_t(index)];
     const std::string cp = "cameras[" + std::to_string(index) + "]";
-    if (gc.type != "perspective") src.fail(cp + ".type", "only perspective cameras are supported, found '" + gc.type + "'");
     Camera c;
     c.eye = glm::vec3(world * glm::vec4(0, 0, 0, 1));
     c.target = c.eye + glm::vec3(world * glm::vec4(0, 0, -1, 0));  // cameras look down their local -z, +y up
     c.up = glm::vec3(world * glm::vec4(0, 1, 0, 0));
-    c.vfov_degrees = float(glm::degrees(gc.perspective.yfov));
     c.width = 640;
     c.height = 480;
-    if (gc.perspective.aspectRatio > 0 && std::isfinite(gc.perspective.aspectRatio))
-        c.height = std::clamp(int(std::lround(640.0 / gc.perspective.aspectRatio)), 1, 16384);
+    if (gc.type == "orthographic") {
+        // xmag and ymag are the view's half-extents; their ratio is the image's aspect.
+        const double xmag = std::fabs(gc.orthographic.xmag), ymag = std::fabs(gc.orthographic.ymag);
+        c.ortho_half_height = float(ymag);
+        if (xmag > 0 && ymag > 0) c.height = std::clamp(int(std::lround(640.0 * ymag / xmag)), 1, 16384);
+    } else {
+        c.vfov_degrees = float(glm::degrees(gc.perspective.yfov));
+        if (gc.perspective.aspectRatio > 0 && std::isfinite(gc.perspective.aspectRatio))
+            c.height = std::clamp(int(std::lround(640.0 / gc.perspective.aspectRatio)), 1, 16384);
+    }
     try {
         (void)camera_data(c);
     } catch (const Error& e) {
@@ -324,41 +235,56 @@ GltfModel read_gltf(const std::string& bytes, const std::string& file, const Loa
 }  // namespace
 
 GltfModel load_gltf(const std::string& file, const LoadOptions& options) {
-    const std::string bytes = options.read_file(file);
-    try {
-        return read_gltf(bytes, file, options);
-    } catch (const Error&) {
-        gltf::refuse_unsupported(bytes, file);  // when that is the cause, it is named instead
-        throw;
-    }
+    return read_gltf(options.read_file(file), file, options);
 }
 
 namespace {
 GltfModel read_gltf(const std::string& bytes, const std::string& file, const LoadOptions& options) {
+    if (bytes.size() > 0xffffffffu) throw Error(file + ": larger than 4 GiB");
     const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
     gltf::DataUris data_uris;
     const std::string text = binary ? std::string() : gltf::extract_data_uris(bytes, data_uris);
-    if (!binary) check_uris(text, file, options, data_uris);
+    const std::string_view json_text = binary ? gltf::glb_json_chunk(bytes, file) : std::string_view(text);
+    // Everything tinygltf would take on trust is checked on the raw document
+    // first; one that does not parse is left to tinygltf to report.
+    gltf::check_json_depth(json_text, file);
+    GltfModel out;
+    std::string rewritten;  // the document tinygltf reads, when it differs from the file's
+    {
+        nlohmann::json doc = nlohmann::json::parse(json_text.begin(), json_text.end(), nullptr, false);
+        if (!doc.is_discarded()) {
+            out.warnings = gltf::check_version_and_extensions(doc, file);
+            gltf::check_document(doc, file);
+            gltf::check_node_hierarchy(doc, file, options.max_placed_nodes);
+            for (auto& w : gltf::check_uris(doc, file, options, data_uris)) out.warnings.push_back(std::move(w));
+            if (auto w = gltf::rest_pose_warning(doc, file); !w.empty()) out.warnings.push_back(w);
+            // Skins are not animated here, so they are dropped before tinygltf,
+            // which refuses one without inverseBindMatrices (optional in the
+            // specification); the meshes stay in their rest pose.
+            if (gltf::drop_skins(doc)) {
+                rewritten = doc.dump();
+                if (binary) rewritten = gltf::glb_with_json(bytes, rewritten);
+            }
+        }
+    }
 
     tinygltf::TinyGLTF loader;
-    Files files{&options, {}, &data_uris};
-    loader.SetFsCallbacks({fs_exists, fs_expand, fs_read, fs_write, &files});
-    loader.SetImageLoader(keep_encoded, nullptr);
+    gltf::Files files{&options, {}, &data_uris};
+    loader.SetFsCallbacks(gltf::file_callbacks(files));
+    loader.SetImageLoader(gltf::keep_encoded, nullptr);
     tinygltf::Model model;
     std::string err, warn;
     const std::string dir = fs::path(file).parent_path().string();
-    if (bytes.size() > 0xffffffffu) throw Error(file + ": larger than 4 GiB");
-    const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                         unsigned(bytes.size()), dir)
-                           : loader.LoadASCIIFromString(&model, &err, &warn, text.data(), unsigned(text.size()), dir);
+    const std::string& given = rewritten.empty() ? (binary ? bytes : text) : rewritten;
+    const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(given.data()),
+                                                         unsigned(given.size()), dir)
+                           : loader.LoadASCIIFromString(&model, &err, &warn, given.data(), unsigned(given.size()), dir);
     if (!ok || !err.empty()) {
         std::string what = err.empty() ? warn : err;
         while (!what.empty() && std::isspace(static_cast<unsigned char>(what.back()))) what.pop_back();
         throw Error(file + ": not a valid glTF 2.0 file: " + (what.empty() ? "unknown error" : what));
     }
     const Source src{model, file, options};
-    GltfModel out;
-    out.warnings = gltf::refuse_unsupported(model.asset.version, model.extensionsRequired, file);
 
     gltf::read_materials(src, out);
 
@@ -379,7 +305,8 @@ GltfModel read_gltf(const std::string& bytes, const std::string& file, const Loa
             if (ni < 0 || std::size_t(ni) >= model.nodes.size())
                 src.fail(from, "node " + std::to_string(ni) + " does not exist (the file has " +
                                    std::to_string(model.nodes.size()) + ")");
-            if (depth > kMaxNodeDepth) src.fail(path, "the node hierarchy is deeper than " + std::to_string(kMaxNodeDepth));
+            if (depth > gltf::kMaxNodeDepth)
+                src.fail(path, "the node hierarchy is deeper than " + std::to_string(gltf::kMaxNodeDepth));
             if (depth_of[std::size_t(ni)] >= 0) src.fail(path, "the node is its own ancestor (a cycle)");
             depth_of[std::size_t(ni)] = int(depth);
             const tinygltf::Node& n = model.nodes[std::size_t(ni)];
@@ -394,6 +321,10 @@ GltfModel read_gltf(const std::string& bytes, const std::string& file, const Loa
                     for (std::size_t p = 0; p < prims.size(); ++p) {
                         out.meshes[mi].push_back(read_primitive(
                             src, prims[p], "meshes[" + std::to_string(mi) + "].primitives[" + std::to_string(p) + "]"));
+                        GltfPrimitive& prim = out.meshes[mi].back();
+                        if (prim.material >= 0)
+                            if (const auto& t = out.materials[std::size_t(prim.material)].uv_transform)
+                                for (glm::vec2& uv : prim.uvs) uv = glm::vec2(*t * glm::vec3(uv, 1));
                         if (!out.meshes[mi].back().warning.empty()) out.warnings.push_back(out.meshes[mi].back().warning);
                     }
                     mesh_read[mi] = true;

@@ -39,6 +39,9 @@ struct GltfInstance {
 struct GltfMaterial {
     std::string name;
     SceneMaterial material;  // CLP_MAT_GLTF; texture slots index GltfModel::textures
+    // KHR_texture_transform of its textures, applied to the texture
+    // coordinates of the primitives that use it (GltfPrimitive::uvs).
+    std::optional<glm::mat3> uv_transform;
 };
 
 struct GltfModel {

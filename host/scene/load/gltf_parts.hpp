@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <tiny_gltf.h>
 
 #include "scene/load/gltf_model.hpp"
@@ -44,9 +45,11 @@ struct View {
 // The accessor `index`, named `path` in messages, which must be of type
 // `type` (TINYGLTF_TYPE_*, or any of two when alt_type >= 0) and of a
 // component type in `allowed` (float ones are converted, integer ones only
-// when normalized unless `integers` says they are indices).
+// when normalized unless `integers` says they are indices, or
+// `plain_integers` that unnormalized ones are values, as
+// KHR_mesh_quantization allows for positions and texture coordinates).
 View view(const Source& src, int index, const std::string& path, int type, int alt_type,
-          const std::vector<int>& allowed, bool integers = false);
+          const std::vector<int>& allowed, bool integers = false, bool plain_integers = false);
 
 // Base64 data URIs of buffers in a .gltf's text, decoded here rather than
 // by tinygltf: its decoder and two JSON parses (check_uris and tinygltf's) of
@@ -59,6 +62,34 @@ inline const std::string kDataUriPrefix = "(data URI #";  // then its number and
 std::string extract_data_uris(const std::string& text, DataUris& uris);
 // The decoded bytes for a path ending in one of those names, else null.
 std::vector<unsigned char>* find_data_uri(DataUris& uris, const std::string& path);
+
+// The files of one load, for tinygltf's file-system callbacks: everything is
+// read through LoadOptions::read_file, so tests and fuzzers work from memory.
+// Decoded data URIs are served under their stand-in names (extract_data_uris).
+struct Files {
+    const LoadOptions* options;
+    std::string last_error;
+    DataUris* data_uris = nullptr;
+};
+tinygltf::FsCallbacks file_callbacks(Files& files);
+// tinygltf's image loader: images are kept encoded and decoded (through
+// LoadOptions::decode_texture) only when a material uses them, with a
+// message that names the use.
+bool keep_encoded(tinygltf::Image* image, int index, std::string* err, std::string* warn, int width, int height,
+                  const unsigned char* bytes, int size, void* user);
+
+// %XX escapes in a URI, as the glTF specification allows in relative paths;
+// ok is false (and s returned) for a bad escape.
+std::string percent_decode(const std::string& s, bool& ok);
+// The path a relative URI names: decoded, beside `file`, lexically normal.
+std::string uri_path(const std::string& file, const std::string& uri);
+
+// The external files the document names, checked before tinygltf reads them,
+// so that a missing buffer, or a URI that is not a relative path or a base64
+// data URI, is reported by its glTF path and the path it resolves to. A
+// missing image is a warning (returned): its textures are left out.
+std::vector<std::string> check_uris(const nlohmann::json& doc, const std::string& file, const LoadOptions& options,
+                                    DataUris& uris);
 
 // Materials and the textures they name: appends to model.materials and model.textures.
 void read_materials(const Source& src, GltfModel& model);

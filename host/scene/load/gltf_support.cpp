@@ -1,8 +1,5 @@
 #include "scene/load/gltf_support.hpp"
 
-#include <cstdint>
-#include <cstring>
-
 #include <nlohmann/json.hpp>
 
 #include "util/error.hpp"
@@ -32,13 +29,13 @@ bool has_version_1_structure(const nlohmann::json& doc) {
 
 const std::vector<std::string>& supported_extensions() {
     static const std::vector<std::string> k = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                               "KHR_materials_ior"};
+                                               "KHR_materials_ior", "KHR_mesh_quantization", "KHR_texture_transform"};
     return k;
 }
 
 const std::vector<std::string>& look_only_extensions() {
     static const std::vector<std::string> k = {
-        "KHR_technique_webgl", "KHR_materials_pbrSpecularGlossiness", "KHR_materials_unlit", "KHR_texture_transform",
+        "KHR_technique_webgl", "KHR_materials_pbrSpecularGlossiness", "KHR_materials_unlit",
         "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular", "KHR_materials_transmission",
         "KHR_materials_volume", "KHR_materials_iridescence", "KHR_materials_anisotropy", "KHR_materials_dispersion",
         "KHR_materials_variants"};
@@ -74,35 +71,8 @@ std::vector<std::string> refuse_unsupported(const std::string& version, const st
                 " (clpath implements " + have + ")");
 }
 
-void refuse_unsupported(const std::string& bytes, const std::string& file) {
-    std::string json = bytes;
-    if (bytes.size() >= 12 && bytes.compare(0, 4, "glTF") == 0) {
-        std::uint32_t container = 0, length = 0;
-        std::memcpy(&container, bytes.data() + 4, 4);
-        if (container == 1) refuse_version("1.0", file);  // the binary glTF 1.0 extension's header
-        if (bytes.size() < 20 || bytes.compare(16, 4, "JSON") != 0) return;
-        std::memcpy(&length, bytes.data() + 12, 4);
-        if (length > bytes.size() - 20) return;
-        json = bytes.substr(20, length);
-    }
-    const nlohmann::json doc = nlohmann::json::parse(json, nullptr, false);
-    if (doc.is_discarded() || !doc.is_object()) return;
-    std::string version;
-    bool versioned = false;
-    if (auto asset = doc.find("asset"); asset != doc.end() && asset->is_object()) {
-        if (auto v = asset->find("version"); v != asset->end()) {
-            versioned = true;
-            if (v->is_string()) version = v->get<std::string>();
-            // Some 1.0 exporters wrote the version as a number.
-            if (v->is_number()) version = v->get<double>() < 2 ? "1.0" : "";
-        }
-    }
-    if (!versioned && has_version_1_structure(doc)) refuse_version("1.0", file);
-    std::vector<std::string> required;
-    if (auto r = doc.find("extensionsRequired"); r != doc.end() && r->is_array())
-        for (const auto& e : *r)
-            if (e.is_string()) required.push_back(e.get<std::string>());
-    (void)refuse_unsupported(version, required, file);
+void refuse_version_1_structure(const nlohmann::json& doc, const std::string& file) {
+    if (has_version_1_structure(doc)) refuse_version("1.0", file);
 }
 
 std::string incomplete_triangle_warning(const std::string& file, const std::string& path, std::size_t corners) {

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 namespace clpath::gltf {
 
 // The extensions clpath implements (docs/scene-format.md, "glTF 2.0").
@@ -28,12 +30,9 @@ const std::vector<std::string>& look_only_extensions();
 std::vector<std::string> refuse_unsupported(const std::string& version, const std::vector<std::string>& required,
                                             const std::string& file);
 
-// When reading failed: looks at the raw file (.gltf JSON or .glb) and throws
-// the message above if the cause is a glTF 1.0 document (by asset.version,
-// the binary header's version, or without asset the 1.0 structure: objects
-// where glTF 2.0 has arrays) or an unsupported required extension; returns
-// otherwise, for the caller to report its own error.
-void refuse_unsupported(const std::string& bytes, const std::string& file);
+// For a document without asset.version: throws the glTF 1.0 message above
+// when it has glTF 1.0's structure (objects where glTF 2.0 has arrays).
+void refuse_version_1_structure(const nlohmann::json& doc, const std::string& file);
 
 // The warning for a triangle-list primitive whose corner count (its vertices,
 // or its indices) is not a multiple of 3: its last, incomplete triangle is

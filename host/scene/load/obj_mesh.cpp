@@ -1,5 +1,7 @@
 #include "scene/load/obj_mesh.hpp"
 
+#include "scene/load/load_options.hpp"
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -190,6 +192,22 @@ void scan_mtl(const std::string& text, const std::string& file) {
     }
 }
 
+// The line of `keyword` (map_Kd, map_d) in material `material`'s block of an
+// MTL file, for messages about the file it names; 0 if not found.
+int mtl_statement_line(const std::string& text, const std::string& material, std::string_view keyword) {
+    int line_no = 0;
+    bool inside = false;
+    for (std::size_t pos = 0; pos < text.size();) {
+        const std::string_view line = next_line(text, pos);
+        ++line_no;
+        std::string_view rest = line;
+        const std::string_view key = next_token(rest);
+        if (key == "newmtl") inside = name_of(rest) == material;
+        else if (inside && key == keyword) return line_no;
+    }
+    return 0;
+}
+
 // tinyobjloader also parses statements clpath never uses (skin weights vw,
 // vp, lines and points, tags, smoothing groups, object and group names),
 // some unchecked: a vw joint id of 1e38 is converted to int out of range,
@@ -377,6 +395,8 @@ ObjMesh parse_obj(const std::string& raw_text, const std::string& file, const Re
         std::string mtl_text;
         try {
             mtl_text = read_file(path);
+        } catch (const RestrictedFileError&) {
+            throw;
         } catch (const Error& e) {
             // As Blender and assimp do: the mesh still loads, its materials grey.
             mesh.warnings.push_back(file + ":" + std::to_string(lib.line) + ": mtllib '" + lib.name + "': " +
@@ -409,6 +429,9 @@ ObjMesh parse_obj(const std::string& raw_text, const std::string& file, const Re
                 };
                 om.diffuse_texture = resolve(m.diffuse_texname);
                 om.alpha_texture = resolve(m.alpha_texname);
+                om.mtl_file = path;
+                if (!om.diffuse_texture.empty()) om.diffuse_texture_line = mtl_statement_line(mtl_text, m.name, "map_Kd");
+                if (!om.alpha_texture.empty()) om.alpha_texture_line = mtl_statement_line(mtl_text, m.name, "map_d");
                 float rough = float(m.roughness);
                 if (rough == 0) rough = m.shininess > 1 && m.shininess < 1000 ? float(std::pow(2.0 / (m.shininess + 2.0), 0.25)) : 1.0f;
                 const glm::vec3 base = om.diffuse_texture.empty() ? vec(m.diffuse) : glm::vec3(1);

@@ -27,6 +27,9 @@ struct ObjMaterial {
     // material with either is the glTF material (CLP_MAT_GLTF) and its
     // texture slot is filled in by the scene that loads the images.
     std::string diffuse_texture, alpha_texture;
+    // Where they are named, for messages: the .mtl and the lines of map_Kd, map_d.
+    std::string mtl_file;
+    int diffuse_texture_line = 0, alpha_texture_line = 0;
 };
 
 struct ObjMesh {

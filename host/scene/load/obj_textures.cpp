@@ -1,17 +1,27 @@
 #include "scene/load/obj_textures.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "util/error.hpp"
 
 namespace clpath {
 namespace {
-TextureImage load(const std::string& path, const std::string& material, const LoadOptions& options) {
+// A map whose file is missing or unreadable: as Blender does, the material
+// loads without it (a neutral, white map), with a warning naming the .mtl
+// line and the path the map resolved to. A file that is there but is not an
+// image stays an error.
+std::optional<TextureImage> load(Scene& scene, const ObjMaterial& om, const std::string& path, const char* keyword,
+                                 int line, const LoadOptions& options) {
     std::string bytes;
     try {
         bytes = options.read_file(path);
+    } catch (const RestrictedFileError&) {
+        throw;
     } catch (const Error& e) {
-        throw Error("material '" + material + "': " + e.what());
+        scene.warnings.push_back(om.mtl_file + ":" + std::to_string(line) + ": " + keyword + " of material '" + om.name +
+                                 "': " + e.what() + "; the material is rendered without it");
+        return std::nullopt;
     }
     TextureImage t = options.decode_texture(bytes, path);
     if (t.is_float) {
@@ -29,26 +39,30 @@ TextureImage load(const std::string& path, const std::string& material, const Lo
 SceneMaterial obj_material_with_textures(Scene& scene, const ObjMaterial& om, const LoadOptions& options) {
     SceneMaterial m = om.material;
     if (om.diffuse_texture.empty() && om.alpha_texture.empty()) return m;
-    TextureImage base;
-    if (!om.diffuse_texture.empty()) base = load(om.diffuse_texture, om.name, options);
-    if (!om.alpha_texture.empty() && om.alpha_texture != om.diffuse_texture) {
-        const TextureImage a = load(om.alpha_texture, om.name, options);
-        if (om.diffuse_texture.empty()) {
-            base = a;
-            for (std::size_t i = 0; i + 3 < base.rgba8.size(); i += 4) base.rgba8[i] = base.rgba8[i + 1] = base.rgba8[i + 2] = 255;
-        } else if (a.width != base.width || a.height != base.height) {
-            throw Error(om.alpha_texture + ": map_d of material '" + om.name + "' is " + std::to_string(a.width) + "x" +
-                        std::to_string(a.height) + ", but its map_Kd is " + std::to_string(base.width) + "x" +
-                        std::to_string(base.height) + " (clpath needs them the same size)");
-        }
-        // map_d is a coverage mask: its first channel becomes alpha.
-        for (std::size_t i = 0; i + 3 < base.rgba8.size(); i += 4) base.rgba8[i + 3] = a.rgba8[i];
+    std::optional<TextureImage> base, alpha;
+    if (!om.diffuse_texture.empty()) base = load(scene, om, om.diffuse_texture, "map_Kd", om.diffuse_texture_line, options);
+    const bool own_alpha = !om.alpha_texture.empty() && om.alpha_texture != om.diffuse_texture;
+    if (own_alpha) alpha = load(scene, om, om.alpha_texture, "map_d", om.alpha_texture_line, options);
+    // map_d's file missing (or the map_Kd it shares): no mask to cut with.
+    if (!om.alpha_texture.empty() && !(own_alpha ? alpha.has_value() : base.has_value())) m.alpha_mode = CLP_ALPHA_OPAQUE;
+    if (!base && !alpha) return m;
+    const bool from_diffuse = base.has_value();
+    if (!base) {
+        base = *alpha;
+        for (std::size_t i = 0; i + 3 < base->rgba8.size(); i += 4) base->rgba8[i] = base->rgba8[i + 1] = base->rgba8[i + 2] = 255;
+    } else if (alpha && (alpha->width != base->width || alpha->height != base->height)) {
+        throw Error(om.alpha_texture + ": map_d of material '" + om.name + "' is " + std::to_string(alpha->width) + "x" +
+                    std::to_string(alpha->height) + ", but its map_Kd is " + std::to_string(base->width) + "x" +
+                    std::to_string(base->height) + " (clpath needs them the same size)");
     }
+    // map_d is a coverage mask: its first channel becomes alpha.
+    if (alpha)
+        for (std::size_t i = 0; i + 3 < base->rgba8.size(); i += 4) base->rgba8[i + 3] = alpha->rgba8[i];
     Texture t;
-    t.name = om.diffuse_texture.empty() ? om.alpha_texture : om.diffuse_texture;
-    t.width = base.width;
-    t.height = base.height;
-    t.rgba8 = std::move(base.rgba8);
+    t.name = from_diffuse ? om.diffuse_texture : om.alpha_texture;
+    t.width = base->width;
+    t.height = base->height;
+    t.rgba8 = std::move(base->rgba8);
     scene.textures.push_back(std::move(t));
     m.texture[CLP_TEX_BASE] = int(scene.textures.size() - 1);
     return m;

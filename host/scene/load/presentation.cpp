@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <tuple>
 
 #include "util/error.hpp"
@@ -31,27 +33,90 @@ glm::vec3 from_angles(float azimuth_deg, float elevation_deg) {
     return {std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)};
 }
 
-// The eye distance at which every corner of the box lies inside the frame,
-// with a margin, for a camera looking along -d at the box's centre.
-float framing_distance(const Bounds& b, glm::vec3 d, float vfov_deg, float aspect) {
-    const glm::vec3 f = -d;
-    const glm::vec3 r = glm::normalize(glm::cross(f, glm::vec3(0, 1, 0)));
-    const glm::vec3 u = glm::cross(r, f);
-    const float margin = 0.8f;  // the box fills at most 80 % of the frame: room for ground and shadow
-    const float tan_v = std::tan(glm::radians(vfov_deg) * 0.5f) * margin, tan_h = tan_v * aspect;
-    const glm::vec3 c0 = b.centre();
-    float dist = 0;
-    for (int i = 0; i < 8; ++i) {
-        const glm::vec3 corner((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z);
-        const glm::vec3 c = corner - c0;
-        // The corner's depth in front of the eye is dist - dot(c, d).
-        dist = std::max(dist, std::abs(glm::dot(c, r)) / tan_h + glm::dot(c, d));
-        dist = std::max(dist, std::abs(glm::dot(c, u)) / tan_v + glm::dot(c, d));
+// The model's bounding sphere about c: the farthest vertex's distance (a
+// tighter sphere than the box's, so a round model is not framed small).
+float bounding_radius(const Scene& s, glm::vec3 c) {
+    float r2 = 0;
+    for (const auto& v : s.vertices) {
+        const float d2 = glm::dot(v - c, v - c);
+        if (std::isfinite(d2)) r2 = std::max(r2, d2);
     }
-    return std::max(dist, 1.05f * b.radius());
+    return std::max(std::sqrt(r2), 1e-6f);
+}
+
+// The eye distance at which a sphere of radius r fills the frame's shorter
+// side up to a margin: its silhouette's half-angle asin(r / distance) equals
+// the half-field of view whose tangent is margin * tan(fov / 2).
+float framing_distance(float r, float vfov_deg, float aspect) {
+    const float tan_half = std::tan(glm::radians(vfov_deg) * 0.5f) * std::min(1.0f, aspect);
+    return r / std::sin(std::atan(presentation::kFramingMargin * tan_half));
+}
+
+std::string percent(float fraction) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, fraction < 0.1f ? "%.2g %%" : "%.0f %%", double(fraction) * 100.0);
+    return buf;
+}
+
+float luminance(glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+// A texture's linear RGB at uv (nearest texel, repeat): enough for an estimate
+// of how much light a textured emitter gives.
+glm::vec3 texel_at(const Texture& t, glm::vec2 uv) {
+    if (t.width <= 0 || t.height <= 0) return glm::vec3(1);
+    const float u = uv.x - std::floor(uv.x), v = uv.y - std::floor(uv.y);
+    const std::size_t x = std::min<std::size_t>(std::size_t(u * float(t.width)), std::size_t(t.width - 1));
+    const std::size_t y = std::min<std::size_t>(std::size_t(v * float(t.height)), std::size_t(t.height - 1));
+    const std::size_t i = 4 * (y * std::size_t(t.width) + x);
+    if (t.is_float) return t.rgba32.size() >= i + 3 ? glm::vec3(t.rgba32[i], t.rgba32[i + 1], t.rgba32[i + 2]) : glm::vec3(1);
+    if (t.rgba8.size() < i + 3) return glm::vec3(1);
+    auto decode = [](std::uint8_t b) {  // the sRGB transfer function (IEC 61966-2-1)
+        const float c = float(b) / 255.0f;
+        return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+    };
+    return {decode(t.rgba8[i]), decode(t.rgba8[i + 1]), decode(t.rgba8[i + 2])};
+}
+
+// The irradiance (luminance, W/m^2) the scene's own emitters and punctual
+// lights bring to a model of bounding sphere (c, r): a point or spot light of
+// intensity I at distance d gives I / d^2 (d at least r); a directional light
+// its irradiance; emitting triangles their power (pi * radiance * area, a
+// Lambertian emitter's) spread over a sphere of radius r around the model,
+// which is what they give it on average. An emissive texture is read at each
+// triangle's centroid, so a texture that is black but for a small display
+// counts as the display.
+float own_irradiance(const Scene& s, glm::vec3 c, float r) {
+    double power = 0;
+    const bool have_uvs = s.uvs.size() == s.vertices.size();
+    for (std::size_t t = 0; t < s.triangle_count(); ++t) {
+        const SceneMaterial& m = s.materials[s.triangle_material[t]];
+        if (!emits(m)) continue;
+        glm::vec3 e = load3(m.emission);
+        const int tex = m.texture[CLP_TEX_EMISSION];
+        if (tex >= 0 && std::size_t(tex) < s.textures.size() && have_uvs)
+            e *= texel_at(s.textures[std::size_t(tex)], (s.uvs[3 * t] + s.uvs[3 * t + 1] + s.uvs[3 * t + 2]) / 3.0f);
+        const glm::vec3 a = s.vertices[3 * t], b = s.vertices[3 * t + 1], d = s.vertices[3 * t + 2];
+        const double area = 0.5 * double(glm::length(glm::cross(b - a, d - a)));
+        if (std::isfinite(area)) power += M_PI * double(luminance(e)) * area;
+    }
+    double e = power / (4.0 * M_PI * double(r) * double(r));
+    for (const auto& l : s.lights) {
+        if (l.type == PunctualLight::Type::Directional) {
+            e += luminance(l.intensity);
+        } else {
+            const float dist = std::max(glm::length(l.position - c), r);
+            e += luminance(l.intensity) / (dist * dist);
+        }
+    }
+    return float(e);
 }
 
 }  // namespace
+
+float presentation_irradiance() {
+    // The sun's irradiance plus a constant sky's on a horizontal surface (pi L).
+    return luminance(presentation::kSunIrradiance) + float(M_PI) * luminance(presentation::kSkyRadiance);
+}
 
 glm::vec3 presentation_view_direction(const Scene& s) {
     // The triangles' area-weighted normals, at most ~200k of them: the score
@@ -84,7 +149,8 @@ glm::vec3 presentation_view_direction(const Scene& s) {
     glm::vec3 best(0, 0, 1);
     double best_score = -1;
     std::vector<std::pair<glm::vec3, double>> scored;
-    for (float el : {15.0f, 25.0f, 35.0f, 45.0f})
+    namespace p = presentation;
+    for (float el : {p::kMaxElevation / 3, 2 * p::kMaxElevation / 3, p::kMaxElevation})
         for (float az = 0; az < 360; az += 15) {
             const glm::vec3 d = from_angles(az, el);
             double visible = 0;
@@ -94,7 +160,7 @@ glm::vec3 presentation_view_direction(const Scene& s) {
         }
     // Near-ties (within 3 %) go to the view closest to the front-right
     // three-quarter view a photographer would start from.
-    const glm::vec3 preferred = from_angles(35, 25);
+    const glm::vec3 preferred = from_angles(35, 20);
     double best_pref = -2;
     for (const auto& [d, visible] : scored)
         if (visible >= 0.97 * best_score && glm::dot(d, preferred) > best_pref) {
@@ -109,10 +175,29 @@ void present_bare_mesh(Scene& s, const PresentationOptions& o) { present_model(s
 void present_model(Scene& s, const PresentationOptions& o, bool keep_camera) {
     namespace p = presentation;
     if (s.triangle_count() == 0) throw Error("internal: present_model on an empty scene");
-    bool self_lit = !s.lights.empty();
-    for (auto m : s.triangle_material) self_lit = self_lit || emits(s.materials[m]);
+    bool has_own_light = !s.lights.empty();
+    for (auto m : s.triangle_material) has_own_light = has_own_light || emits(s.materials[m]);
 
     const Bounds b = bounds_of(s);
+    const glm::vec3 centre = b.centre();
+    const float radius = bounding_radius(s, centre);
+    // The model's own light decides, not its mere presence: a helmet whose
+    // only emitter is a small visor display would otherwise render black.
+    const float own = has_own_light ? own_irradiance(s, centre, radius) : 0.0f;
+    const float ours = presentation_irradiance();
+    const bool self_lit = has_own_light && own >= p::kOwnLightEnough * ours;
+    if (o.environment) {
+        s.notes.push_back("presentation: the environment given lights the model, with a ground under it");
+    } else if (self_lit) {
+        s.notes.push_back("presentation: the model's own lights and emitters light it (about " + percent(own / ours) +
+                          " of the default sky and sun's irradiance), so no sky, sun or ground is added");
+    } else if (has_own_light) {
+        s.notes.push_back("presentation: the model's own lights and emitters give about " + percent(own / ours) +
+                          " of the default sky and sun's irradiance (under " + percent(p::kOwnLightEnough) +
+                          "), so a sky, a sun and a ground are added beside them");
+    } else {
+        s.notes.push_back("presentation: the model brings no light, so a sky, a sun and a ground are added");
+    }
     Camera& cam = s.camera;
     glm::vec3 d;  // towards the camera, for the sun's placement
     if (keep_camera) {
@@ -124,8 +209,8 @@ void present_model(Scene& s, const PresentationOptions& o, bool keep_camera) {
         cam.height = 480;
         cam.vfov_degrees = p::kVerticalFov;
         cam.up = glm::vec3(0, 1, 0);
-        cam.target = b.centre();
-        cam.eye = b.centre() + d * framing_distance(b, d, cam.vfov_degrees, float(cam.width) / float(cam.height));
+        cam.target = centre;
+        cam.eye = centre + d * framing_distance(radius, cam.vfov_degrees, float(cam.width) / float(cam.height));
     }
 
     if (o.ground && (!self_lit || o.environment)) {

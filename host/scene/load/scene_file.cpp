@@ -509,6 +509,11 @@ private:
             env.image = resolve(file_, image->string());
             const bool exists = options_.file_exists ? options_.file_exists(env.image) : fs::is_regular_file(env.image);
             if (!exists) image->fail(env.image + ": no such file");
+            try {
+                check_file_allowed(env.image);  // read later by path, not through read_file
+            } catch (const Error& e) {
+                image->fail(e.what());
+            }
         } else {
             for (const auto& v : {scale, rotation, importance})
                 if (v) v->fail("only an environment image takes this field");

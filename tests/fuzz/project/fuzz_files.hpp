@@ -51,6 +51,7 @@ inline LoadOptions options() {
     o.file_exists = [](const std::string& path) { return files().count(path) > 0; };
     // Enough for every shape kind, small enough that each input runs in milliseconds.
     o.max_triangles = 20000;
+    o.max_placed_nodes = 20000;
     return o;
 }
 
