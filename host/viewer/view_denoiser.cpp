@@ -51,7 +51,8 @@ void ViewDenoiser::toggle(Context& ctx, const Renderer& renderer) {
         return;
     }
     on_ = true;
-    restart(renderer);
+    // Off and on again over the same view keeps its guides and denoised image.
+    if (guides_for_ != generation_) restart_guides(renderer);
 }
 
 void ViewDenoiser::restart(const Renderer& renderer) {
@@ -60,7 +61,11 @@ void ViewDenoiser::restart(const Renderer& renderer) {
     guide_pacer_.forget();
     shown_.reset();
     failure_.clear();
-    if (!on_ || !guides_) return;
+    if (on_) restart_guides(renderer);  // else when it is next turned on
+}
+
+void ViewDenoiser::restart_guides(const Renderer& renderer) {
+    guides_for_ = generation_;
     try {
         guides_->restart(renderer);
     } catch (const Error& e) {
@@ -88,9 +93,14 @@ void ViewDenoiser::collect(bool wait) {
 
 void ViewDenoiser::update(Renderer& renderer, bool final) {
     collect(false);
+    // While the camera moves every frame, guides would be thrown away unused:
+    // they start once a view has held for a frame.
+    const bool held = generation_ == updated_generation_;
+    updated_generation_ = generation_;
     if (!on_ || !applies(renderer) || !failure_.empty()) return;
     try {
         if (!guides_->ready()) {
+            if (!held) return;
             const auto t0 = Clock::now();
             const std::uint32_t n = guides_->advance(renderer, guide_pacer_.next_samples());
             guide_pacer_.record(n, std::chrono::duration<double>(Clock::now() - t0).count());

@@ -72,6 +72,7 @@ private:
         double seconds = 0;
         std::string error;
     };
+    void restart_guides(const Renderer& renderer);
     void collect(bool wait);
     void show(Result r);
     bool applies(const Renderer& renderer) const;  // a radiance view
@@ -81,7 +82,8 @@ private:
     std::unique_ptr<Denoiser> denoiser_;  // before job_: a job in flight uses it
     std::unique_ptr<GuidePasses> guides_;
     std::future<Result> job_;
-    std::uint64_t generation_ = 0;
+    std::uint64_t generation_ = 1, guides_for_ = 0;  // the view the guides are of
+    std::uint64_t updated_generation_ = 0;           // the view of the last update()
     bool on_ = false;
     std::string unavailable_, failure_;
     std::optional<Result> shown_;
