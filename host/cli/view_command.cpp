@@ -45,8 +45,8 @@ Command add_view_command(CLI::App& app) {
     cmd->add_option("--frames", o->frames, "Exit after this many frames (for tests and captures)")
         ->check(whole_number(1, 1000000000));
     cmd->add_option("--script", o->script,
-                    "Scripted input, one command a line: wait N, wait-spp N, key K, hold K N, drag DX DY, click X Y, "
-                    "scroll S, screenshot, capture FILE, resize W H, camera, quit")
+                    "Scripted input, one command a line: wait N, wait-spp N, wait-denoised, key K, hold K N, "
+                    "drag DX DY, click X Y, scroll S, screenshot, capture FILE, resize W H, camera, quit")
         ->check(CLI::ExistingFile);
     cmd->add_option("--state-log", o->state_log, "Write the viewer's state as JSON Lines, one line a frame");
     cmd->add_flag("--hide-hud", o->hide_hud, "Start with the heads-up display hidden (key H toggles it)");

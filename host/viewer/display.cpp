@@ -96,6 +96,15 @@ void Display::upload(Renderer& renderer, float exposure) {
     glBindTexture(GL_TEXTURE_2D, 0);
 }
 
+void Display::upload(const std::vector<std::uint8_t>& rgba, glm::ivec2 size) {
+    if (rgba.size() != std::size_t(size.x) * size.y * 4) throw Error("internal: display pixels of the wrong size");
+    if (size != size_) resize(size);
+    glBindTexture(GL_TEXTURE_2D, texture_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, size_.x, size_.y, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+}
+
 glm::ivec4 Display::draw(glm::ivec2 fb) const {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
     glViewport(0, 0, fb.x, fb.y);

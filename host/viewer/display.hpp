@@ -34,6 +34,8 @@ public:
 
     // Resolves the renderer's mean with exposure and brings it into the texture.
     void upload(Renderer& renderer, float exposure);
+    // Brings host pixels (RGBA8 sRGB, row 0 at the top, of the renderer's size) into the texture instead.
+    void upload(const std::vector<std::uint8_t>& rgba, glm::ivec2 size);
     // Clears the framebuffer and draws the image letterboxed; returns where it went.
     glm::ivec4 draw(glm::ivec2 framebuffer) const;
     glm::ivec2 image_size() const { return size_; }

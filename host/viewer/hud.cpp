@@ -44,6 +44,14 @@ void Hud::draw(const HudState& s) {
     if (ImGui::Begin("clpath", nullptr, flags)) {
         ImGui::Text("clpath  %s", s.scene.c_str());
         ImGui::Separator();
+        if (s.denoise_problem) {  // at the top: the answer to a key just pressed
+            ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
+            ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30);
+            ImGui::TextUnformatted(s.denoise.c_str());
+            ImGui::PopTextWrapPos();
+            ImGui::PopStyleColor();
+            ImGui::Separator();
+        }
         if (ImGui::BeginTable("stats", 2)) {
             auto row = [](const char* label, const char* fmt, auto... args) {
                 ImGui::TableNextRow();
@@ -56,6 +64,7 @@ void Hud::draw(const HudState& s) {
                 row("spp", "%llu / %llu", (unsigned long long)s.spp, (unsigned long long)s.max_spp);
             else
                 row("spp", "%llu", (unsigned long long)s.spp);
+            row("denoise", "%s", s.denoise_problem ? "see above" : s.denoise.c_str());
             row("frame", "%.1f ms (%.1f fps)", s.ms_per_frame, s.ms_per_frame > 0 ? 1000.0 / s.ms_per_frame : 0.0);
             row("samples", "%.2f M/s", s.msamples_per_s);
             row("rays", "%.2f M/s", s.mrays_per_s);

@@ -17,6 +17,8 @@ struct HudState {
     float exposure = 1, speed = 0;
     int bvh_depth = 0, bvh_levels = 0;  // bvh_depth 0: overlay off
     float aperture_radius = 0, focus_distance = 0;  // aperture 0: a pinhole
+    std::string denoise;          // the denoise row: off, on with its time, what it waits for, or why it cannot
+    bool denoise_problem = false;  // shown as an error
 };
 
 class Hud {

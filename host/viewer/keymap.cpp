@@ -27,6 +27,7 @@ std::optional<KeyAction> action_for_key(const std::string& key) {
         {"c", {Action::PrintCamera}},
         {"r", {Action::ResetCamera}},
         {"h", {Action::ToggleHud}},
+        {"n", {Action::ToggleDenoise}},
     };
     auto it = table.find(key);
     if (it == table.end()) return std::nullopt;
@@ -46,7 +47,8 @@ const std::vector<std::pair<std::string, std::string>>& key_help() {
         {"1-7, Tab", "path, path-bsdf, ao, normals, depth, albedo, heatmap"},
         {"B, [ ]", "BVH boxes on/off, depth"},
         {"- =", "exposure down / up (half a stop)"},
-        {"P", "screenshot: PNG + linear EXR"},
+        {"N", "denoise the shown image (Open Image Denoise) on / off"},
+        {"P", "screenshot: PNG + linear EXR (and .denoised twins with N on)"},
         {"F12", "capture the window"},
         {"C", "print the camera as JSON"},
         {"R", "back to the scene's camera"},

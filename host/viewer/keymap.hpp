@@ -23,6 +23,7 @@ enum class Action {
     PrintCamera,
     ResetCamera,
     ToggleHud,
+    ToggleDenoise,   // show the estimate denoised (Open Image Denoise); the estimate itself is unchanged
 };
 
 struct KeyAction {

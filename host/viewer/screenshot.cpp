@@ -1,10 +1,12 @@
 #include "viewer/screenshot.hpp"
 
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 
 #include "image/image.hpp"
+#include "image/tone_map.hpp"
 #include "util/error.hpp"
 #include "viewer/gl.hpp"
 
@@ -26,7 +28,7 @@ std::string screenshot_stem(const std::string& scene, const std::string& integra
 }
 
 std::vector<std::string> save_screenshot(Renderer& renderer, const std::string& dir, const std::string& stem,
-                                         float exposure) {
+                                         float exposure, const Image* denoised) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec) throw Error("cannot create " + dir + ": " + ec.message());
@@ -41,6 +43,21 @@ std::vector<std::string> save_screenshot(Renderer& renderer, const std::string& 
 #endif
     write_image(linear, renderer.resolve(1.0f));
     written.push_back(linear);
+    if (denoised) {
+        RenderedImage d;
+        d.linear = *denoised;
+        DisplaySettings display;
+        display.exposure_stops = std::log2(exposure);
+        d.srgb8 = display_srgb8(*denoised, display);  // the same clamp and sRGB curve as the film kernel's
+        const auto twin = [&](const std::string& path) {
+            const std::filesystem::path p(path);
+            return (p.parent_path() / (p.stem().string() + ".denoised" + p.extension().string())).string();
+        };
+        for (std::size_t i = 0, n = written.size(); i < n; ++i) {
+            write_image(twin(written[i]), d);
+            written.push_back(twin(written[i]));
+        }
+    }
     return written;
 }
 

@@ -16,10 +16,12 @@ namespace clpath::viewer {
 std::string screenshot_stem(const std::string& scene, const std::string& integrator, std::uint64_t spp);
 
 // Writes DIR/STEM.png (with exposure, as on screen) and DIR/STEM.exr (the
-// mean itself; .pfm in a build without OpenImageIO). Creates dir. Returns the
-// paths written.
+// mean itself; .pfm in a build without OpenImageIO). With a denoised image
+// (the viewer's denoising on), DIR/STEM.denoised.png and .exr beside them, as
+// render --denoise does: the estimate is always saved, never replaced.
+// Creates dir. Returns the paths written.
 std::vector<std::string> save_screenshot(Renderer& renderer, const std::string& dir, const std::string& stem,
-                                         float exposure);
+                                         float exposure, const Image* denoised = nullptr);
 
 // Reads the back buffer (call after drawing, before the swap) into a PNG.
 void save_window_capture(const std::string& path, glm::ivec2 framebuffer);

@@ -21,6 +21,7 @@ const std::map<std::string, Syntax>& syntax() {
     using K = ScriptCommand::Kind;
     static const std::map<std::string, Syntax> s = {
         {"wait", {K::Wait, 1, false}},       {"wait-spp", {K::WaitSpp, 1, false}},
+        {"wait-denoised", {K::WaitDenoised, 0, false}},
         {"key", {K::Key, 0, true}},          {"hold", {K::Hold, 1, true}},
         {"drag", {K::Drag, 2, false}},       {"scroll", {K::Scroll, 1, false}},
         {"click", {K::Click, 2, false}},
@@ -75,7 +76,7 @@ std::vector<ScriptCommand> load_view_script(const std::string& path) {
     return parse_view_script(ss.str(), path);
 }
 
-ScriptRunner::Step ScriptRunner::next_frame(std::uint64_t spp) {
+ScriptRunner::Step ScriptRunner::next_frame(std::uint64_t spp, bool denoise_caught_up) {
     using K = ScriptCommand::Kind;
     Step step;
     if (hold_frames_ > 0) {
@@ -97,6 +98,10 @@ ScriptRunner::Step ScriptRunner::next_frame(std::uint64_t spp) {
             waiting_ = false;
         } else if (c.kind == K::WaitSpp) {
             if (spp < std::uint64_t(c.a)) return step;
+        } else if (c.kind == K::WaitDenoised) {
+            // denoise_caught_up is from before this frame's commands, one of
+            // which (key n) may have changed what there is to wait for.
+            if (!denoise_caught_up || !step.commands.empty()) return step;
         } else if (c.kind == K::Hold) {
             hold_key_ = c.text;
             hold_frames_ = long(c.a);

@@ -3,6 +3,10 @@
 // One command a line; '#' starts a comment:
 //   wait N            let N frames pass
 //   wait-spp N        wait until the image has N samples per pixel
+//   wait-denoised     with denoising on (key N), wait until the window shows the
+//                     current estimate denoised (at least until the next frame
+//                     after other commands); at once when denoising is off or
+//                     cannot run
 //   key K             press and release key K ("w", "1", "tab", "[", "f12", ...)
 //   hold K N          hold key K down for N frames (movement keys)
 //   drag DX DY        one mouse drag of DX, DY window pixels (y down)
@@ -22,7 +26,7 @@
 namespace clpath::viewer {
 
 struct ScriptCommand {
-    enum class Kind { Wait, WaitSpp, Key, Hold, Drag, Scroll, Click, Screenshot, Capture, Resize, Camera, Quit };
+    enum class Kind { Wait, WaitSpp, WaitDenoised, Key, Hold, Drag, Scroll, Click, Screenshot, Capture, Resize, Camera, Quit };
     Kind kind;
     std::string text;  // key name or file
     double a = 0, b = 0;
@@ -43,8 +47,9 @@ public:
         std::vector<ScriptCommand> commands;  // to carry out this frame, in order
         std::vector<std::string> held;        // keys held down this frame
     };
-    // Called once before each frame with the image's current samples per pixel.
-    Step next_frame(std::uint64_t spp);
+    // Called once before each frame with the image's current samples per pixel
+    // and whether the shown image has caught up with it (viewer/view_denoiser.hpp).
+    Step next_frame(std::uint64_t spp, bool denoise_caught_up = true);
     bool finished() const { return next_ == commands_.size() && hold_frames_ == 0; }
     // The line of the command the script is at (0 when finished).
     int current_line() const { return next_ < commands_.size() ? commands_[next_].line : 0; }

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <thread>
 
 #include "cl/device.hpp"
@@ -26,6 +27,7 @@
 #include "viewer/screenshot.hpp"
 #include "viewer/sigint.hpp"
 #include "viewer/state_log.hpp"
+#include "viewer/view_denoiser.hpp"
 #include "viewer/view_script.hpp"
 #include "viewer/window.hpp"
 
@@ -102,6 +104,8 @@ public:
         bvh_levels_ = bvh_levels(renderer_->bvh_nodes());
         hud_ = std::make_unique<Hud>(window_.get());
         if (o.hide_hud) hud_->toggle();
+        // The guides take at most half a frame's budget while they are made.
+        denoiser_ = std::make_unique<ViewDenoiser>(o.frame_ms / 2000.0);
     }
 
     int run() {
@@ -147,12 +151,14 @@ private:
     void resize_renderer(glm::ivec2 size) {
         renderer_->resize(fly_.camera(size.x, size.y));
         pacer_.forget();
+        denoiser_->restart(*renderer_);
         clear_error();
     }
 
     void step(float dt) {
         WindowInput in = window_.poll(hud_->wants_mouse());
-        const ScriptRunner::Step scripted = script_.next_frame(renderer_->stats().samples_per_pixel);
+        const ScriptRunner::Step scripted =
+            script_.next_frame(renderer_->stats().samples_per_pixel, denoiser_->caught_up(*renderer_));
         MotionInput motion{glm::vec3(0), in.drag, in.scroll};
         for (const std::string& key : in.pressed) press(key);
         for (const ScriptCommand& c : scripted.commands) run_command(c, motion, in.held);
@@ -201,6 +207,7 @@ private:
         const Camera& cur = renderer_->camera();
         try {
             renderer_->set_camera(fly_.camera(cur.width, cur.height));
+            denoiser_->restart(*renderer_);
             clear_error();
         } catch (const Error& e) {
             set_error(e.what());
@@ -233,6 +240,7 @@ private:
         try {
             renderer_->set_settings(settings_);
             renderer_->reset();
+            denoiser_->restart(*renderer_);
             clear_error();
         } catch (const Error& e) {
             set_error(e.what());
@@ -273,6 +281,7 @@ private:
                 camera_changed();
                 break;
             case Action::ToggleHud: hud_->toggle(); break;
+            case Action::ToggleDenoise: denoiser_->toggle(*display_context_.context, *renderer_); break;
         }
     }
 
@@ -293,7 +302,7 @@ private:
             case K::Resize: window_.resize(int(c.a), int(c.b)); break;
             case K::Camera: print_camera(); break;
             case K::Quit: quit_ = true; break;
-            case K::Wait: case K::WaitSpp: case K::Hold: break;  // the runner handles these
+            case K::Wait: case K::WaitSpp: case K::WaitDenoised: case K::Hold: break;  // the runner handles these
         }
     }
 
@@ -302,9 +311,17 @@ private:
     }
 
     void screenshot(const std::string& stem) {
+        // With denoising on, the denoised twin of this very estimate is saved
+        // beside it; if denoising fails, the estimate is still saved.
+        std::optional<Image> denoised;
         try {
-            const auto files =
-                save_screenshot(*renderer_, o_.screenshot_dir, stem.empty() ? default_stem() : stem, exposure_);
+            denoised = denoiser_->denoise_now(*renderer_);
+        } catch (const Error& e) {
+            set_error(e.what());
+        }
+        try {
+            const auto files = save_screenshot(*renderer_, o_.screenshot_dir, stem.empty() ? default_stem() : stem,
+                                               exposure_, denoised ? &*denoised : nullptr);
             for (const auto& f : files) std::fprintf(stderr, "clpath: wrote %s\n", f.c_str());
             log_.write({{"event", "screenshot"}, {"frame", frame_}, {"spp", renderer_->stats().samples_per_pixel},
                         {"files", files}});
@@ -346,8 +363,14 @@ private:
                 render_blocked_ = true;  // until a camera or setting change: retrying would fail the same way
             }
         }
+        const std::uint64_t now_spp = renderer_->stats().samples_per_pixel;
+        denoiser_->update(*renderer_, render_blocked_ || (o_.max_spp && now_spp >= o_.max_spp));
         try {
-            display_->upload(*renderer_, exposure_);
+            const Camera& c = renderer_->camera();
+            if (const auto* denoised = denoiser_->shown(exposure_))
+                display_->upload(*denoised, {c.width, c.height});
+            else
+                display_->upload(*renderer_, exposure_);
         } catch (const Error& e) {
             set_error(e.what());
         }
@@ -396,6 +419,9 @@ private:
         const Camera& c = renderer_->camera();
         s.aperture_radius = c.aperture_radius;
         s.focus_distance = c.resolved_focus_distance();
+        const DenoiseStatus d = denoiser_->status(*renderer_);
+        s.denoise = d.message;
+        s.denoise_problem = d.problem;
         return s;
     }
 
@@ -415,7 +441,16 @@ private:
                                 {"vfov", c.vfov_degrees}, {"aperture_radius", c.aperture_radius},
                                 {"focus_distance", c.resolved_focus_distance()}}},
                     {"frame_ms", frame_ms_},
+                    {"denoise", denoise_json()},
                     {"error", error_}});
+    }
+
+    json denoise_json() const {
+        const DenoiseStatus d = denoiser_->status(*renderer_);
+        return {{"state", d.state},
+                {"shown_spp", d.shown_spp ? json(*d.shown_spp) : json(nullptr)},  // null: the raw estimate is shown
+                {"ms", d.milliseconds},
+                {"message", d.message}};
     }
 
     void set_error(const std::string& message) {
@@ -442,6 +477,7 @@ private:
     std::unique_ptr<Display> display_;
     std::unique_ptr<BvhOverlay> overlay_;
     std::unique_ptr<Hud> hud_;
+    std::unique_ptr<ViewDenoiser> denoiser_;
     FlyCamera fly_;
     FramePacer pacer_;
     StateLog log_;

@@ -104,6 +104,26 @@ TEST(ViewerScript, CaptureEndsTheFramesCommands) {
     EXPECT_EQ(r.next_frame(0).commands.at(0).text, "4");
 }
 
+TEST(ViewerScript, WaitDenoisedWaitsForTheShownImageToCatchUp) {
+    const auto cmds = parse_view_script("wait-denoised\nkey 1\n", "s");
+    ASSERT_EQ(cmds.size(), 2u);
+    EXPECT_EQ(cmds[0].kind, K::WaitDenoised);
+    EXPECT_NE(error_of("wait-denoised 3\n").find("unexpected '3'"), std::string::npos);
+    ScriptRunner r(cmds);
+    EXPECT_TRUE(r.next_frame(4, false).commands.empty());
+    EXPECT_TRUE(r.next_frame(5, false).commands.empty());
+    EXPECT_EQ(r.next_frame(5, true).commands.at(0).text, "1");
+    EXPECT_TRUE(r.finished());
+    // Scripts without the argument (denoising off) never wait.
+    ScriptRunner off(parse_view_script("wait-denoised\nkey 2\n", "s"));
+    EXPECT_EQ(off.next_frame(0).commands.at(0).text, "2");
+    // A key before it in the same frame may turn denoising on: it waits for the next frame's answer.
+    ScriptRunner keyed(parse_view_script("key n\nwait-denoised\nkey 3\n", "s"));
+    EXPECT_EQ(keyed.next_frame(0, true).commands.size(), 1u);
+    EXPECT_TRUE(keyed.next_frame(1, false).commands.empty());
+    EXPECT_EQ(keyed.next_frame(1, true).commands.at(0).text, "3");
+}
+
 TEST(ViewerKeymap, NumberKeysChooseEveryIntegratorOnce) {
     std::vector<unsigned> seen;
     for (char k = '1'; k <= '7'; ++k) {
@@ -117,4 +137,5 @@ TEST(ViewerKeymap, NumberKeysChooseEveryIntegratorOnce) {
     EXPECT_FALSE(action_for_key("w"));
     EXPECT_TRUE(is_movement_key("w"));
     EXPECT_EQ(action_for_key("b")->action, Action::ToggleBvhOverlay);
+    EXPECT_EQ(action_for_key("n")->action, Action::ToggleDenoise);
 }

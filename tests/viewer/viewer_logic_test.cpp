@@ -5,6 +5,7 @@
 #include "bvh/bvh.hpp"
 #include "scene/shapes.hpp"
 #include "viewer/bvh_boxes.hpp"
+#include "viewer/denoise_pacing.hpp"
 #include "viewer/focus_pick.hpp"
 #include "viewer/frame_pacer.hpp"
 #include "viewer/letterbox.hpp"
@@ -92,6 +93,27 @@ TEST(ViewerFramePacer, FillsTheBudgetWithWholeSamples) {
     EXPECT_EQ(p.next_samples(), 1u);
     p.record(1, 0.5);  // slower than the budget: still one sample
     EXPECT_EQ(p.next_samples(), 1u);
+}
+
+TEST(ViewerDenoisePacing, FirstAtOnceThenByTimeAndSampleGrowth) {
+    DenoisePacing p;
+    EXPECT_FALSE(p.due(0, 0, false)) << "nothing to denoise";
+    EXPECT_TRUE(p.due(0, 4, false)) << "the first image of a view is due at once";
+    p.started(4);
+    EXPECT_FALSE(p.due(10, 100, false)) << "one at a time";
+    p.finished(1.0, 0.1);  // took 0.1 s: the next waits max(0.25, 4 x 0.1) = 0.4 s
+    EXPECT_FALSE(p.due(1.3, 100, false)) << "too soon after the last";
+    EXPECT_FALSE(p.due(1.5, 4, true)) << "no new samples";
+    EXPECT_FALSE(p.due(1.5, 4, false));
+    EXPECT_TRUE(p.due(1.5, 5, false)) << "grown by 1.25x";
+    EXPECT_TRUE(p.due(1.5, 4 + 1, true));
+    p.started(5);
+    p.finished(2.0, 0.01);  // fast: the floor of 0.25 s holds
+    EXPECT_FALSE(p.due(2.2, 100, false));
+    EXPECT_TRUE(p.due(2.3, 100, false));
+    EXPECT_TRUE(p.due(2.3, 6, true)) << "the estimate stopped with samples the shown image lacks";
+    p.reset();
+    EXPECT_TRUE(p.due(2.3, 1, false)) << "a new view is due at once";
 }
 
 TEST(ViewerLetterbox, KeepsAspectAndCentres) {

@@ -336,3 +336,185 @@ TEST(Session, CtrlCExitsCleanly) {
     EXPECT_NE(r.output.find("exit=0"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("(interrupted)"), std::string::npos) << r.output;
 }
+
+namespace {
+
+// Pixel-to-pixel variation as displayed: the mean squared difference of
+// horizontally and vertically adjacent pixels' sRGB values (clamped, as the
+// window shows them: in linear radiance the lamp's edges, 30 times brighter
+// than the walls, would outweigh all the noise). Monte Carlo noise is
+// independent from pixel to pixel and adds to it; a denoiser removes it.
+double neighbour_energy(const Image& img) {
+    const auto v = [&](int x, int y, int c) { return double(srgb_encode(img.at(x, y, c))); };
+    double sum = 0;
+    std::size_t n = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                if (x + 1 < img.width) sum += std::pow(v(x + 1, y, c) - v(x, y, c), 2), ++n;
+                if (y + 1 < img.height) sum += std::pow(v(x, y + 1, c) - v(x, y, c), 2), ++n;
+            }
+    return sum / double(n);
+}
+
+double channel_mean(const Image& img, int c) {
+    double sum = 0;
+    for (std::size_t i = c; i < img.rgb.size(); i += 3) sum += img.rgb[i];
+    return sum / double(img.rgb.size() / 3);
+}
+
+int max_byte_difference(const Image& a, const Image& b) {
+    if (a.rgb.size() != b.rgb.size()) return 256;
+    int worst = 0;
+    for (std::size_t i = 0; i < a.rgb.size(); ++i)
+        worst = std::max(worst, std::abs(int(std::lround(255 * srgb_encode(a.rgb[i]))) -
+                                         int(std::lround(255 * srgb_encode(b.rgb[i])))));
+    return worst;
+}
+
+// What a denoised image must be of its estimate: much smoother (under a
+// quarter of its pixel-to-pixel variation: at 16 spp that is almost all
+// noise, which OIDN removes nearly whole; the estimate itself, or another
+// noisy estimate, scores about 1) and as bright (each channel's mean within
+// 10%: a denoiser moves energy between neighbours, it does not make or lose
+// it, beyond what clamping fireflies takes). Empty: it is.
+std::string denoised_problems(const Image& denoised, const Image& estimate) {
+    std::string p;
+    const double ratio = neighbour_energy(denoised) / neighbour_energy(estimate);
+    if (!(ratio < 0.25)) p += "pixel-to-pixel variation " + std::to_string(ratio) + " of the estimate's; ";
+    for (int c = 0; c < 3; ++c) {
+        const double m = channel_mean(denoised, c), e = channel_mean(estimate, c);
+        if (!(std::abs(m - e) <= 0.1 * e)) p += "channel " + std::to_string(c) + " mean " + std::to_string(m) +
+                                               ", the estimate's " + std::to_string(e) + "; ";
+    }
+    return p;
+}
+
+}  // namespace
+
+// Key N shows the estimate denoised: the window shows the denoised image
+// (checked against the screenshot's .denoised twin), the estimate keeps
+// accumulating and is the bits a viewer without the key renders, key N again
+// shows the estimate, and a camera move shows the raw estimate until the new
+// view's guides and first denoise are done.
+TEST(Session, DenoiseKeyShowsTheEstimateDenoisedAndLeavesItUnchanged) {
+    const std::string dir = test_dir();
+    constexpr int kSpp = 4;
+    const std::string spp = std::to_string(kSpp);
+    const Session s = view(dir,
+                           "key n\nwait-spp " + spp + "\nwait-denoised\n"
+                           "capture " + dir + "/den-window.png\nscreenshot den\n"
+                           "key n\nwait 1\ncapture " + dir + "/raw-window.png\nscreenshot raw\n"
+                           "key n\ndrag 6 0\nwait 2\nwait-spp " + spp + "\nwait-denoised\nquit\n",
+                           "--hide-hud --max-spp " + spp);
+    ASSERT_EQ(s.result.exit_code, 0) << s.result.output;
+    const auto frames = s.frames();
+    ASSERT_FALSE(frames.empty());
+    if (frames.back()["denoise"]["state"] == "unavailable")
+        GTEST_SKIP() << "SKIPPED: Open Image Denoise is not installed, nothing tested: "
+                     << frames.back()["denoise"]["message"].get<std::string>();
+
+    // The estimate with the key pressed is the one without it, bit for bit.
+    fs::create_directories(dir + "/plain");
+    const Session plain = view(dir + "/plain", "wait-spp " + spp + "\nscreenshot plain\nquit\n", "--hide-hud --max-spp " + spp);
+    ASSERT_EQ(plain.result.exit_code, 0) << plain.result.output;
+    const Image estimate = read_image(dir + "/plain/plain.exr"), den_estimate = read_image(dir + "/den.exr"),
+                raw_estimate = read_image(dir + "/raw.exr"), denoised = read_image(dir + "/den.denoised.exr");
+    EXPECT_EQ(differing_pixels(estimate, den_estimate), 0u) << "denoising changed the estimate";
+    EXPECT_EQ(differing_pixels(estimate, raw_estimate), 0u);
+    EXPECT_FALSE(fs::exists(dir + "/raw.denoised.exr")) << "a screenshot with denoising off wrote a denoised twin";
+    ASSERT_EQ(denoised.width, kWidth);
+    ASSERT_EQ(denoised.height, kHeight);
+
+    // Denoised in the expected way, by a criterion that rejects the estimate
+    // itself and another noisy estimate (seed 1) as "denoised".
+    const std::string problems = denoised_problems(denoised, estimate);
+    EXPECT_EQ(problems, "");
+    std::printf("pixel-to-pixel variation, denoised / estimate at %d spp: %.4f\n", kSpp,
+                neighbour_energy(denoised) / neighbour_energy(estimate));
+    EXPECT_NE(denoised_problems(estimate, estimate), "");
+    const std::string other = dir + "/other-seed.pfm";
+    const ProcessResult r = run_shell(std::string(CLPATH_EXE) + " render -q --spp " + spp + " --seed 1 --width " +
+                                      std::to_string(kWidth) + " --height " + std::to_string(kHeight) + " -o " + other);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(denoised_problems(read_image(other), estimate), "") << "another noisy estimate passed as denoised";
+
+    // The window showed the denoised image, then (key N again) the estimate.
+    EXPECT_LE(max_byte_difference(read_image(dir + "/den-window.png"), read_image(dir + "/den.denoised.png")), 1);
+    EXPECT_LE(max_byte_difference(read_image(dir + "/raw-window.png"), read_image(dir + "/raw.png")), 1);
+    EXPECT_GT(differing_pixels(read_image(dir + "/den-window.png"), read_image(dir + "/raw-window.png")), 0u);
+
+    // The log: while on, the estimate went on growing, and the shown image
+    // was denoised at a bounded rate (DenoisePacing: 1.25x the samples
+    // between two, plus the first and the last), never from the future.
+    std::vector<std::uint64_t> shown;
+    std::uint64_t spp_when_on = 0;
+    bool on = false, moved = false, raw_after_move = false;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        const json& d = frames[i]["denoise"];
+        const auto spp_now = frames[i]["spp"].get<std::uint64_t>();
+        if (i > 0 && frames[i]["camera"] != frames[i - 1]["camera"]) {
+            moved = true;
+            raw_after_move = d["shown_spp"].is_null();
+        }
+        if (d["state"] != "on") {
+            if (on) EXPECT_TRUE(d["shown_spp"].is_null());
+            continue;
+        }
+        if (!on) spp_when_on = spp_now;
+        on = true;
+        if (d["shown_spp"].is_null()) continue;
+        const auto n = d["shown_spp"].get<std::uint64_t>();
+        EXPECT_LE(n, spp_now);
+        EXPECT_GT(d["ms"].get<double>(), 0.0);
+        if (!moved && (shown.empty() || shown.back() != n)) shown.push_back(n);
+    }
+    // The key was pressed before the first sample; the first frame adds one.
+    EXPECT_EQ(spp_when_on, 1u) << "the estimate did not go on growing with denoising on";
+    ASSERT_FALSE(shown.empty());
+    EXPECT_EQ(shown.back(), std::uint64_t(kSpp));
+    EXPECT_LE(shown.size(), 2 + std::ceil(std::log(double(kSpp)) / std::log(1.25)));
+    EXPECT_TRUE(moved);
+    EXPECT_TRUE(raw_after_move) << "the frame after the move showed the old view's denoised image";
+    EXPECT_EQ(frames.back()["denoise"]["shown_spp"], kSpp) << "the moved view was not denoised";
+}
+
+// Without the library the key leaves the estimate on screen and says why in
+// the heads-up display (orange text that was not there before) and the
+// terminal; nothing crashes, hangs or writes a denoised file.
+TEST(Session, DenoiseKeyWithoutTheLibrarySaysWhyAndGoesOn) {
+    const std::string dir = test_dir();
+    ::setenv("CLPATH_OIDN_LIBRARY", (dir + "/no-such-oidn.so").c_str(), 1);
+    const Session s = view(dir,
+                           "wait-spp 4\ncapture " + dir + "/before.png\nkey n\nwait 1\nwait-denoised\n"
+                           "capture " + dir + "/after.png\nscreenshot shot\nkey n\nwait 1\nquit\n",
+                           "--max-spp 4", 320, 240);
+    ::unsetenv("CLPATH_OIDN_LIBRARY");
+    ASSERT_EQ(s.result.exit_code, 0) << s.result.output;
+    EXPECT_NE(s.result.output.find("cannot denoise: denoising needs Intel Open Image Denoise 2, and "
+                                   "CLPATH_OIDN_LIBRARY=" + dir + "/no-such-oidn.so does not load it"),
+              std::string::npos)
+        << s.result.output;
+    const auto frames = s.frames();
+    ASSERT_FALSE(frames.empty());
+    EXPECT_EQ(frames.front()["denoise"]["state"], "off");
+    const json& last = frames.back()["denoise"];
+    EXPECT_EQ(last["state"], "unavailable");
+    EXPECT_EQ(last["message"].get<std::string>().rfind("denoising needs Intel Open Image Denoise 2", 0), 0u) << last;
+    for (const auto& f : frames) EXPECT_TRUE(f["denoise"]["shown_spp"].is_null());
+    EXPECT_TRUE(fs::exists(dir + "/shot.exr"));
+    EXPECT_FALSE(fs::exists(dir + "/shot.denoised.exr"));
+    // The message's colour (hud.cpp: 1, 0.75, 0.3) over the panel.
+    const auto orange_pixels = [](const Image& img) {
+        std::size_t n = 0;
+        for (std::size_t i = 0; i < img.rgb.size(); i += 3) {
+            const float r = srgb_encode(img.rgb[i]), g = srgb_encode(img.rgb[i + 1]), b = srgb_encode(img.rgb[i + 2]);
+            n += r > 0.6f && g > 0.55f * r && g < 0.9f * r && b < 0.55f * g;
+        }
+        return n;
+    };
+    const std::size_t before = orange_pixels(read_image(dir + "/before.png")),
+                      after = orange_pixels(read_image(dir + "/after.png"));
+    std::printf("orange pixels: %zu before the key, %zu after\n", before, after);
+    EXPECT_GT(after, before + 100) << "the heads-up display shows no message";
+}

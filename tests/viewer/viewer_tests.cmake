@@ -9,7 +9,8 @@
 # it) run the clpath program under xvfb-run: Xvfb with Mesa's llvmpipe, real
 # kernels on the test device. They take one X server each, so they run one
 # at a time (RESOURCE_LOCK): xvfb-run -a can race when started together.
-set(CLPATH_VIEWER_LOGIC keymap camera_controller camera_snippet frame_pacer bvh_boxes view_script focus_pick)
+set(CLPATH_VIEWER_LOGIC keymap camera_controller camera_snippet frame_pacer bvh_boxes view_script focus_pick
+    denoise_pacing)
 list(TRANSFORM CLPATH_VIEWER_LOGIC PREPEND ${CMAKE_SOURCE_DIR}/host/viewer/)
 list(TRANSFORM CLPATH_VIEWER_LOGIC APPEND .cpp)
 add_library(clpath_viewer_logic STATIC ${CLPATH_VIEWER_LOGIC})
