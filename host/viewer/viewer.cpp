@@ -62,6 +62,7 @@ json vec_json(glm::vec3 v) { return json::array({v.x, v.y, v.z}); }
 Scene load_for_viewer(const ViewerOptions& o, RenderSettings& settings) {
     Scene scene = load_scene(o.scene);
     for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
+    for (const auto& n : scene.notes) std::fprintf(stderr, "clpath: %s\n", n.c_str());
     // The scene file's render block gives the defaults; options override the settings.
     settings = settings_from_scene(scene.render);
     if (o.seed) settings.seed = *o.seed;

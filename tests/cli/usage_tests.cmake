@@ -149,6 +149,11 @@ clpath_usage_test(env_on_gltf_replaces_sky_and_sun RC 0 ARGS render ${SUZANNE} $
                   OUTPUT "scene 'Suzanne' has no emitter; the image will be black")
 clpath_usage_test(gltf_has_sky_and_sun RC 0 ARGS render ${SUZANNE} ${SMALL} -o ${USAGE_OUT}/sky-gltf.pfm
                   OUTPUT "summary: .*triangles=3938 " REJECT "no emitter")  # the control for the two above
+# The presentation chosen, and why, is said on stderr.
+clpath_usage_test(gltf_presentation_says_why RC 0 ARGS render ${SUZANNE} ${SMALL} -o ${USAGE_OUT}/why-gltf.pfm
+                  OUTPUT "clpath: presentation: the model brings no light, so a sky, a sun and a ground are added")
+clpath_usage_test(gltf_presentation_env_says_why RC 0 ARGS render ${SUZANNE} ${SMALL} --env 0.5 -o ${USAGE_OUT}/why-env.pfm
+                  OUTPUT "clpath: presentation: the environment given lights the model" REJECT "brings no light")
 clpath_usage_test(camera_on_gltf RC 0 ARGS render ${SUZANNE} ${SMALL} --camera from=0,0,-9
                   -o ${USAGE_OUT}/cam-gltf.pfm OUTPUT "summary: ")
 
