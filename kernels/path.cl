@@ -48,87 +48,141 @@ static inline void path_start(PathState* ps, Ray ray, Rng rng) {
     ps->rng = rng;
 }
 
-#if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH
-/* Next-event estimation: light sampled at a surface, weighted against BSDF
- * sampling of the same path by the power heuristic (Veach 1997, ch. 9).
- * Returns the unoccluded contribution; *sh gets the shadow ray that decides
- * it (inactive where the sample gives nothing). */
-static inline float3 sample_direct(const SceneData* sc, const Surface* s, float3 wo, Rng* rng, ShadowRay* sh) {
-    sh->active = 0;
-    LightSample ls;
-    float u0 = rng_next(rng), u1 = rng_next(rng), u2 = rng_next(rng);
-    if (!sample_light(sc->lights, sc->alias, sc->fp, &sc->env, s->p, u0, u1, u2, &ls)) return (float3)(0.0f);
-    float bsdf_pdf;
-    float3 f = material_eval(surface_material(s), s->ng, s->ns, wo, ls.wi, &bsdf_pdf);
-    if (!(max3(f) > 0.0f) || !(max3(ls.L) > 0.0f)) return (float3)(0.0f);
-    float3 o = offset_ray_origin(s->p, s->err, s->ng, ls.wi);
-    sh->active = 1;
-    sh->o = o;
-    sh->d = ls.infinite ? ls.wi : ls.to - o;
-    sh->tmax = ls.infinite ? INFINITY : 1.0f;
-    float w = ls.delta ? 1.0f : power_heuristic(ls.pdf, bsdf_pdf);
-    return f * ls.L * (w / ls.pdf);
-}
-#endif
+/* A step is cut into phases, in the order they draw random numbers, so that
+ * the wavefront can run each in a kernel of its own (wavefront.cl) and the
+ * megakernel runs them one after the other (path_step): the same functions
+ * on the same values, so the same bits.
+ *   path_miss         a ray that hit nothing: the environment it sees
+ *   surface_at        (scene_data.cl) the surface a ray hit
+ *   path_roulette     the surface's emission, then Russian roulette (0 or 1 draw)
+ *   path_light_sample next-event estimation's light sample (3 draws, by the caller)
+ *   path_light_eval   its BSDF value, MIS weight and shadow ray
+ *   path_light_join   the contribution joins the path (or its shadow ray)
+ *   path_scatter      the BSDF sample for the next ray (3 draws)
+ *   path_follow       the path takes it */
 
-/* One bounce: h is the closest hit of ps->ray (tri < 0: a miss). Returns 1
- * when the path goes on along ps->ray, 0 when it has ended. *sh is the
- * shadow ray to resolve before the next step (path_shadow_done). */
-static inline int path_step(const SceneData* sc, PathState* ps, const Hit* h, ShadowRay* sh) {
-    sh->active = 0;
-    if (h->tri < 0) {
+/* A ray that left the scene: adds the environment it sees, MIS-weighted
+ * against light sampling at the vertex it left. The path ends there. */
+CLP_GPU_INLINE void path_miss(const SceneData* sc, PathState* ps) {
 #ifdef CLP_HAS_ENV
-        float w = 1.0f;
+    float w = 1.0f;
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH
-        if (!ps->prev_delta && sc->fp->env_light != CLP_NO_LIGHT)
-            w = power_heuristic(ps->prev_pdf,
-                                sc->alias[sc->fp->env_light].pmf * env_pdf(sc->fp, &sc->env, ps->ray.d));
+    if (!ps->prev_delta && sc->fp->env_light != CLP_NO_LIGHT)
+        w = power_heuristic(ps->prev_pdf, sc->alias[sc->fp->env_light].pmf * env_pdf(sc->fp, &sc->env, ps->ray.d));
 #endif
-        ps->L += ps->beta * w * env_radiance(sc->fp, &sc->env, ps->ray.d);
+    ps->L += ps->beta * w * env_radiance(sc->fp, &sc->env, ps->ray.d);
 #endif
-        return 0;
-    }
-    Surface s;
-    surface_at(&s, sc, h, ps->ray.d);
+}
+
+/* path_roulette: adds the emission of the surface s the ray hit (MIS-weighted
+ * against light sampling at the vertex the ray left) and plays Russian
+ * roulette. Returns 1 when the path scatters at s, 0 when it has ended. */
+CLP_GPU_INLINE int path_roulette(const SceneData* sc, PathState* ps, const Hit* h, const Surface* s) {
 #ifdef CLP_HAS_EMISSION
-    float3 Le = material_emission(surface_material(&s), s.front);
+    float3 Le = material_emission(surface_material(s), s->front);
     if (max3(Le) > 0.0f) {
         float w = 1.0f;
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH && defined(CLP_HAS_TRIANGLE_LIGHTS)
-        if (!ps->prev_delta && s.tv->light != CLP_NO_LIGHT)
+        if (!ps->prev_delta && s->tv->light != CLP_NO_LIGHT)
             w = power_heuristic(ps->prev_pdf,
-                                triangle_light_pdf(sc->lights, sc->alias, s.tv->light, ps->prev_p, ps->ray.d, h->t));
+                                triangle_light_pdf(sc->lights, sc->alias, s->tv->light, ps->prev_p, ps->ray.d, h->t));
 #endif
         ps->L += ps->beta * w * Le;
     }
 #endif
-    if (ps->depth >= CLP_MAX_DEPTH || !material_scatters(surface_material(&s))) return 0;
-    if (!russian_roulette(sc->fp, ps->depth, &ps->beta, &ps->rng)) return 0;
-    float3 wo = -ps->ray.d;
+    if (ps->depth >= CLP_MAX_DEPTH || !material_scatters(surface_material(s))) return 0;
+    return russian_roulette(sc->fp, ps->depth, &ps->beta, &ps->rng);
+}
+
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH
-    if (sc->fp->light_count > 0 && !material_is_delta(surface_material(&s))) {
-        float3 v = sample_direct(sc, &s, wo, &ps->rng, sh);
-        if (sh->active) {
-            sh->beta = ps->beta;
-            sh->v = v;
-            /* A throughput that is not finite poisons the radiance whether the
-             * light is seen or not (the sample is then dropped as non-finite). */
-            if (!all(isfinite(ps->beta))) ps->L += ps->beta * (float3)(0.0f);
-        } else {
-            ps->L += ps->beta * v;
-        }
+/* Whether next-event estimation runs at s (it draws its numbers only then). */
+static inline int path_wants_light(const SceneData* sc, const Surface* s) {
+    return sc->fp->light_count > 0 && !material_is_delta(surface_material(s));
+}
+
+/* Next-event estimation's light sample from p, by the path's next three
+ * numbers u0, u1, u2. Returns 0 when it gives nothing. */
+CLP_GPU_INLINE int path_light_sample(const SceneData* sc, float3 p, float u0, float u1, float u2, LightSample* ls) {
+    return sample_light(sc->lights, sc->alias, sc->fp, &sc->env, p, u0, u1, u2, ls);
+}
+
+/* Next-event estimation at s, given the light sample (lit: path_light_sample's
+ * answer), weighted against BSDF sampling of the same path by the power
+ * heuristic (Veach 1997, ch. 9): returns the unoccluded contribution per unit
+ * throughput, and *sh gets the shadow ray that decides it (inactive where
+ * there is none). wo is the direction back along the path's ray. */
+CLP_GPU_INLINE float3 path_light_eval(const Surface* s, float3 wo, const LightSample* ls, int lit, ShadowRay* sh) {
+    sh->active = 0;
+    if (!lit) return (float3)(0.0f);
+    float bsdf_pdf;
+    float3 f = material_eval(surface_material(s), s->ng, s->ns, wo, ls->wi, &bsdf_pdf);
+    if (!(max3(f) > 0.0f) || !(max3(ls->L) > 0.0f)) return (float3)(0.0f);
+    float3 o = offset_ray_origin(s->p, s->err, s->ng, ls->wi);
+    sh->active = 1;
+    sh->o = o;
+    sh->d = ls->infinite ? ls->wi : ls->to - o;
+    sh->tmax = ls->infinite ? INFINITY : 1.0f;
+    float w = ls->delta ? 1.0f : power_heuristic(ls->pdf, bsdf_pdf);
+    return f * ls->L * (w / ls->pdf);
+}
+
+/* The contribution v joins the path: through the shadow ray *sh when there is
+ * one (path_shadow_done), else at once (zero). */
+CLP_GPU_INLINE void path_light_join(PathState* ps, float3 v, ShadowRay* sh) {
+    if (sh->active) {
+        sh->beta = ps->beta;
+        sh->v = v;
+        /* A throughput that is not finite poisons the radiance whether the
+         * light is seen or not (the sample is then dropped as non-finite). */
+        if (!all(isfinite(ps->beta))) ps->L += ps->beta * (float3)(0.0f);
+    } else {
+        ps->L += ps->beta * v;
+    }
+}
+#endif
+
+/* The last phase: samples the BSDF at s (the path's next three numbers,
+ * wo the direction back along its ray). Returns 0 when the path ends here. */
+CLP_GPU_INLINE int path_scatter(Rng* rng, const Surface* s, float3 wo, BsdfSample* bs) {
+    float u1 = rng_next(rng), u2 = rng_next(rng), u3 = rng_next(rng);
+    return material_sample(surface_material(s), s->ng, s->ns, wo, u1, u2, u3, bs);
+}
+
+/* The path goes on along the sampled direction bs->wi from s. */
+CLP_GPU_INLINE void path_follow(PathState* ps, const Surface* s, const BsdfSample* bs) {
+    ps->beta *= bs->weight;
+    ps->prev_pdf = bs->pdf;
+    ps->prev_delta = bs->delta;
+    ps->prev_p = s->p;
+    ps->ray.o = offset_ray_origin(s->p, s->err, s->ng, bs->wi);
+    ps->ray.d = bs->wi;
+    ++ps->depth;
+}
+
+/* One bounce, every phase: returns 1 when the path goes on along ps->ray, 0
+ * when it has ended. *sh is the shadow ray to resolve before the next step
+ * (path_shadow_done). */
+static inline int path_step(const SceneData* sc, PathState* ps, const Hit* h, ShadowRay* sh) {
+    sh->active = 0;
+    if (h->tri < 0) {
+        path_miss(sc, ps);
+        return 0;
+    }
+    Surface s;
+    surface_at(&s, sc, h, ps->ray.d);
+    if (!path_roulette(sc, ps, h, &s)) return 0;
+#if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH
+    if (path_wants_light(sc, &s)) {
+        float u0 = rng_next(&ps->rng), u1 = rng_next(&ps->rng), u2 = rng_next(&ps->rng);
+        LightSample ls;
+        const int lit = path_light_sample(sc, s.p, u0, u1, u2, &ls);
+        const float3 v = path_light_eval(&s, -ps->ray.d, &ls, lit, sh);
+        path_light_join(ps, v, sh);
     }
 #endif
     BsdfSample bs;
-    float u1 = rng_next(&ps->rng), u2 = rng_next(&ps->rng), u3 = rng_next(&ps->rng);
-    if (!material_sample(surface_material(&s), s.ng, s.ns, wo, u1, u2, u3, &bs)) return 0;
-    ps->beta *= bs.weight;
-    ps->prev_pdf = bs.pdf;
-    ps->prev_delta = bs.delta;
-    ps->prev_p = s.p;
-    ps->ray.o = offset_ray_origin(s.p, s.err, s.ng, bs.wi);
-    ps->ray.d = bs.wi;
-    ++ps->depth;
+    if (!path_scatter(&ps->rng, &s, -ps->ray.d, &bs)) return 0;
+    path_follow(ps, &s, &bs);
     return 1;
 }
 

@@ -89,8 +89,11 @@ typedef struct {
 #define surface_material(s) ((s)->m)
 #endif
 
-/* The surface a hit found, written to *out (not returned: see no_hit in traverse_leaf.cl). */
-static inline void surface_at(Surface* out, const SceneData* sc, const Hit* h, float3 d) {
+/* The surface a hit found, written to *out (not returned: see no_hit in
+ * traverse_leaf.cl). Forced inline on a GPU: the wavefront's shading kernels
+ * each recompute it, and kept out of line it is handed back through the
+ * GPU's stack. */
+CLP_GPU_INLINE void surface_at(Surface* out, const SceneData* sc, const Hit* h, float3 d) {
     Surface s;
     s.tv = &sc->tris[h->tri];
     float3 v0 = load3g(s.tv->v0), v1 = load3g(s.tv->v1), v2 = load3g(s.tv->v2);

@@ -349,10 +349,12 @@ typedef struct {
 } Hit;
 
 /* The wavefront integrator's queue lengths (kernels/wavefront.cl): the paths
- * queued for this bounce, those queued for the next, the shadow rays. */
+ * queued for this bounce, those queued for the next, the shadow rays, the
+ * paths of this bounce queued to scatter. */
 #define CLP_WF_QUEUED 0u
 #define CLP_WF_NEXT 1u
 #define CLP_WF_SHADOWS 2u
+#define CLP_WF_SCATTER 3u
 #define CLP_WF_COUNT_SLOTS 4u
 
 /* The scene's device buffers, in the order every kernel that reads the scene

@@ -33,8 +33,11 @@
 
 /* The hit of a ray in (0, tmax), written to *hit: the closest, or with
  * any_hit (shadow rays) the first found; tri -1 for none. *visits (may be
- * NULL) counts nodes fetched. */
-static inline void traverse_bvh(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
+ * NULL) counts nodes fetched. Forced inline on a GPU, as the walks: with
+ * the alpha test in the leaf clang kept it out of line, and the ray, the hit
+ * and the walk's stack went through the GPU's stack (wf_trace: 87 registers,
+ * 544 B at sm_90; inlined, 72 and 248). */
+CLP_GPU_INLINE void traverse_bvh(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
                                 const RayPre* r, float tmax, int any_hit, uint* visits CLP_ALPHA_PARAM) {
     if (any_hit)
         accel_any_hit(hit, nodes, tris, r, tmax, visits CLP_ALPHA_ARG);

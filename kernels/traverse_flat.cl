@@ -59,12 +59,12 @@ CLP_WALK CLP_WALK_RESULT traverse_flat(CLP_WALK_OUT global const BvhNode64* node
 }
 #endif
 
-static inline void accel_closest_hit(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
+CLP_GPU_INLINE void accel_closest_hit(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
                                      const RayPre* r, float tmax, uint* visits CLP_ALPHA_PARAM) {
     CLP_WALK_ASSIGN(hit) traverse_flat(CLP_WALK_OUT_ARG(hit) nodes, tris, r, tmax, 0, visits CLP_ALPHA_ARG);
 }
 
-static inline void accel_any_hit(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
+CLP_GPU_INLINE void accel_any_hit(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
                                  const RayPre* r, float tmax, uint* visits CLP_ALPHA_PARAM) {
     CLP_WALK_ASSIGN(hit) traverse_flat(CLP_WALK_OUT_ARG(hit) nodes, tris, r, tmax, 1, visits CLP_ALPHA_ARG);
 }

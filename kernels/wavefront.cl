@@ -5,8 +5,12 @@
  *
  *   wf_camera      a path per pixel of the band and sample of the wave
  *   wf_trace       closest hit of each queued path's ray
- *   wf_shade       one bounce (path_step, path.cl): queues the paths that go
- *                  on and the shadow rays of next-event estimation
+ *   wf_shade       what each path's ray sees, Russian roulette (path_miss,
+ *                  path_roulette; path.cl): queues the paths that scatter
+ *   wf_light       next-event estimation's light sample (path_light_sample)
+ *   wf_connect     its shadow ray (path_light_eval, path_light_join)
+ *   wf_scatter     the BSDF sample (path_scatter, path_follow): queues the
+ *                  paths that go on
  *   wf_shadow      any hit of each shadow ray; unoccluded light joins its path
  *   wf_next_bounce the queue just filled becomes the one to trace
  *   wf_accumulate  each path's radiance joins its pixel's sum
@@ -22,7 +26,15 @@
  * slot] (rows below), so each kernel reads the 16-byte rows it needs,
  * coalesced. A path's slot is j * pixel_count + its pixel's tiled index in
  * the band (gid of render_paths), for the wave's j-th sample.
- * Queues hold slots; their lengths are counts[CLP_WF_*]. */
+ * Queues hold slots; their lengths are counts[CLP_WF_*].
+ *
+ * A bounce is cut where a kernel holding all of it would need the most
+ * registers: shading every material, sampling a light (Arvo's spherical
+ * triangles) and the BSDF in one kernel took 71-110 registers at sm_90, the
+ * lights' and the BSDF's state live at once. Each phase runs the functions
+ * path_step runs, on the values it would have (the surface is recomputed from
+ * the hit, the light sample kept in the path state), drawing from the path's
+ * random stream in path_step's order. */
 #ifndef CLP_WAVEFRONT_CL
 #define CLP_WAVEFRONT_CL
 
@@ -37,7 +49,11 @@
 #define CLP_WF_ROW_D 1u    /* ray direction, random state (as bits) */
 #define CLP_WF_ROW_L 2u    /* radiance, depth | prev_delta << 31 (as bits) */
 #define CLP_WF_ROW_BETA 3u /* throughput */
-#define CLP_WF_ROW_PREV 4u /* the vertex the ray left */
+#define CLP_WF_ROW_PREV 4u /* the vertex the ray left (stored by wf_shade when the ray
+                              reaches it), whether wf_light samples a light there */
+#define CLP_WF_ROW_LS_WI 5u /* the light sample's direction, pdf */
+#define CLP_WF_ROW_LS_L 6u  /* its radiance, lit | infinite << 1 | delta << 2 (as bits) */
+#define CLP_WF_ROW_LS_TO 7u /* the point sampled on the light */
 /* Rows of a shadow ray. */
 #define CLP_WF_SROW_O 0u    /* origin, tmax */
 #define CLP_WF_SROW_D 1u    /* direction, its path's slot (as bits) */
@@ -116,9 +132,28 @@ kernel void wf_trace(CLP_SCENE_PARAMS constant const FrameParams* fp, global con
     wf_count(&group_rays, rays, &counters->rays);
 }
 
+static inline void wf_load_hit(Hit* h, global const float4* hits, uint slot) {
+    float4 hv = hits[slot];
+    h->t = hv.x;
+    h->b1 = hv.y;
+    h->b2 = hv.z;
+    h->tri = as_int(hv.w);
+}
+
+/* A path's random state alone (the last field of its direction's row). */
+static inline global uint* wf_rng_state(global float4* paths, uint capacity, uint slot) {
+    return (global uint*)&paths[CLP_WF_ROW_D * capacity + slot] + 3;
+}
+
+/* The radiance row alone: all that is read of a path that has ended. */
+static inline void wf_store_L(global float4* paths, uint capacity, uint slot, const PathState* ps) {
+    paths[CLP_WF_ROW_L * capacity + slot] =
+        (float4)(ps->L, as_float(ps->depth | (ps->prev_delta ? 0x80000000u : 0u)));
+}
+
 kernel void wf_shade(CLP_SCENE_PARAMS constant const FrameParams* fp, global float4* paths, uint capacity,
-                     global const uint* queue, global uint* next_queue, global uint* counts,
-                     global const float4* hits, global float4* shadows) {
+                     global const uint* queue, global uint* scatter_queue, global uint* counts,
+                     global const float4* hits) {
     SceneData sc;
     scene_data(&sc, CLP_SCENE_ARGS fp);
     uint i = get_global_id(0);
@@ -126,16 +161,92 @@ kernel void wf_shade(CLP_SCENE_PARAMS constant const FrameParams* fp, global flo
     uint slot = queue[i];
     PathState ps;
     wf_load(&ps, paths, capacity, slot);
-    float4 hv = hits[slot];
     Hit h;
-    h.t = hv.x;
-    h.b1 = hv.y;
-    h.b2 = hv.z;
-    h.tri = as_int(hv.w);
+    wf_load_hit(&h, hits, slot);
+    if (h.tri < 0) {
+        path_miss(&sc, &ps);
+        wf_store_L(paths, capacity, slot, &ps);
+        return;
+    }
+    Surface s;
+    surface_at(&s, &sc, &h, ps.ray.d);
+    /* The vertex reached, for wf_light, stored at once: not kept through the
+     * emission's MIS weight (the vertex left is read before). */
+#if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH
+    const uint light = path_wants_light(&sc, &s);
+#else
+    const uint light = 0;
+#endif
+    paths[CLP_WF_ROW_PREV * capacity + slot] = (float4)(s.p, as_float(light));
+    const int scatters = path_roulette(&sc, &ps, &h, &s);
+    wf_store_L(paths, capacity, slot, &ps);
+    if (!scatters) return;
+    wf_rng_state(paths, capacity, slot)[0] = ps.rng.state;
+    paths[CLP_WF_ROW_BETA * capacity + slot] = (float4)(ps.beta, 0.0f);
+    scatter_queue[atomic_inc(&counts[CLP_WF_SCATTER])] = slot;
+}
+
+/* Every path queued to scatter: a light sample where wf_shade asked for one. */
+kernel void wf_light(CLP_SCENE_PARAMS constant const FrameParams* fp, global float4* paths, uint capacity,
+                     global const uint* queue, global const uint* counts) {
+#if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH
+    SceneData sc;
+    scene_data(&sc, CLP_SCENE_ARGS fp);
+    uint i = get_global_id(0);
+    if (i >= counts[CLP_WF_SCATTER]) return;
+    uint slot = queue[i];
+    float4 p = paths[CLP_WF_ROW_PREV * capacity + slot];
+    if (!as_uint(p.w)) return;
+    /* The numbers drawn and the random state stored at once, so that it is
+     * not kept through the sampling. */
+    Rng rng;
+    rng.state = wf_rng_state(paths, capacity, slot)[0];
+    float u0 = rng_next(&rng), u1 = rng_next(&rng), u2 = rng_next(&rng);
+    wf_rng_state(paths, capacity, slot)[0] = rng.state;
+    LightSample ls;
+    const int lit = path_light_sample(&sc, p.xyz, u0, u1, u2, &ls);
+    paths[CLP_WF_ROW_LS_WI * capacity + slot] = (float4)(ls.wi, ls.pdf);
+    paths[CLP_WF_ROW_LS_L * capacity + slot] =
+        (float4)(ls.L, as_float((uint)lit | (uint)ls.infinite << 1 | (uint)ls.delta << 2));
+    paths[CLP_WF_ROW_LS_TO * capacity + slot] = (float4)(ls.to, 0.0f);
+#endif
+}
+
+/* Every path queued to scatter that sampled a light: its shadow ray (or the
+ * zero contribution added at once). */
+kernel void wf_connect(CLP_SCENE_PARAMS constant const FrameParams* fp, global float4* paths, uint capacity,
+                       global const uint* queue, global uint* counts, global const float4* hits,
+                       global float4* shadows) {
+#if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH
+    SceneData sc;
+    scene_data(&sc, CLP_SCENE_ARGS fp);
+    uint i = get_global_id(0);
+    if (i >= counts[CLP_WF_SCATTER]) return;
+    uint slot = queue[i];
+    if (!as_uint(paths[CLP_WF_ROW_PREV * capacity + slot].w)) return;
+    const float3 d = paths[CLP_WF_ROW_D * capacity + slot].xyz;
+    Hit h;
+    wf_load_hit(&h, hits, slot);
+    Surface s;
+    surface_at(&s, &sc, &h, d);
+    LightSample ls;
+    float4 wi = paths[CLP_WF_ROW_LS_WI * capacity + slot], ll = paths[CLP_WF_ROW_LS_L * capacity + slot];
+    ls.wi = wi.xyz;
+    ls.pdf = wi.w;
+    ls.L = ll.xyz;
+    ls.infinite = (as_uint(ll.w) >> 1) & 1u;
+    ls.delta = (as_uint(ll.w) >> 2) & 1u;
+    ls.to = paths[CLP_WF_ROW_LS_TO * capacity + slot].xyz;
     ShadowRay sh;
-    int more = path_step(&sc, &ps, &h, &sh);
-    wf_store(paths, capacity, slot, &ps);
-    if (more) next_queue[atomic_inc(&counts[CLP_WF_NEXT])] = slot;
+    const float3 v = path_light_eval(&s, -d, &ls, as_uint(ll.w) & 1u, &sh);
+    /* The path's radiance and throughput, read only now (not kept through
+     * the BSDF's evaluation). */
+    PathState ps;
+    float4 l = paths[CLP_WF_ROW_L * capacity + slot];
+    ps.L = l.xyz;
+    ps.beta = paths[CLP_WF_ROW_BETA * capacity + slot].xyz;
+    path_light_join(&ps, v, &sh);
+    paths[CLP_WF_ROW_L * capacity + slot] = (float4)(ps.L, l.w);
     if (sh.active) {
         uint k = atomic_inc(&counts[CLP_WF_SHADOWS]);
         shadows[CLP_WF_SROW_O * capacity + k] = (float4)(sh.o, sh.tmax);
@@ -143,6 +254,40 @@ kernel void wf_shade(CLP_SCENE_PARAMS constant const FrameParams* fp, global flo
         shadows[CLP_WF_SROW_BETA * capacity + k] = (float4)(sh.beta, 0.0f);
         shadows[CLP_WF_SROW_V * capacity + k] = (float4)(sh.v, 0.0f);
     }
+#endif
+}
+
+/* Every path queued to scatter: the BSDF sample for its next ray. */
+kernel void wf_scatter(CLP_SCENE_PARAMS constant const FrameParams* fp, global float4* paths, uint capacity,
+                       global const uint* queue, global uint* next_queue, global uint* counts,
+                       global const float4* hits) {
+    SceneData sc;
+    scene_data(&sc, CLP_SCENE_ARGS fp);
+    uint i = get_global_id(0);
+    if (i >= counts[CLP_WF_SCATTER]) return;
+    uint slot = queue[i];
+    float4 d = paths[CLP_WF_ROW_D * capacity + slot];
+    Rng rng;
+    rng.state = as_uint(d.w);
+    Hit h;
+    wf_load_hit(&h, hits, slot);
+    Surface s;
+    surface_at(&s, &sc, &h, d.xyz);
+    BsdfSample bs;
+    if (!path_scatter(&rng, &s, -d.xyz, &bs)) return;
+    /* What path_follow changes, read only now (not kept through the
+     * sampling); what it replaces is not read. The radiance is not changed. */
+    PathState ps;
+    ps.rng = rng;
+    ps.beta = paths[CLP_WF_ROW_BETA * capacity + slot].xyz;
+    ps.depth = as_uint(paths[CLP_WF_ROW_L * capacity + slot].w) & 0x7fffffffu;
+    path_follow(&ps, &s, &bs);
+    paths[CLP_WF_ROW_O * capacity + slot] = (float4)(ps.ray.o, ps.prev_pdf);
+    paths[CLP_WF_ROW_D * capacity + slot] = (float4)(ps.ray.d, as_float(ps.rng.state));
+    ((global uint*)&paths[CLP_WF_ROW_L * capacity + slot])[3] = ps.depth | (ps.prev_delta ? 0x80000000u : 0u);
+    paths[CLP_WF_ROW_BETA * capacity + slot] = (float4)(ps.beta, 0.0f);
+    /* ps.prev_p is the vertex wf_shade stored already. */
+    next_queue[atomic_inc(&counts[CLP_WF_NEXT])] = slot;
 }
 
 kernel void wf_shadow(CLP_SCENE_PARAMS constant const FrameParams* fp, global float4* paths, uint capacity,
@@ -174,14 +319,15 @@ kernel void wf_shadow(CLP_SCENE_PARAMS constant const FrameParams* fp, global fl
     wf_count(&group_rays, rays, &counters->rays);
 }
 
-/* The queue wf_shade filled is the next one to trace; the shadow list is emptied. */
+/* The queue wf_scatter filled is the next one to trace; the scatter queue and
+ * the shadow list are emptied. */
 kernel void wf_next_bounce(global uint* counts) {
     counts[CLP_WF_QUEUED] = counts[CLP_WF_NEXT];
     counts[CLP_WF_NEXT] = 0;
+    counts[CLP_WF_SCATTER] = 0;
     counts[CLP_WF_SHADOWS] = 0;
 }
 
-/* The wave's radiance joins each pixel's compensated sum, as render_paths adds a sample. */
 /* The wave's radiance joins each pixel's compensated sum, its samples in
  * order, as render_paths adds them. */
 kernel void wf_accumulate(constant const FrameParams* fp, uint samples, global const float4* paths, uint capacity,

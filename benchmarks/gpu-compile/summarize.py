@@ -111,22 +111,25 @@ def main():
         ("ray batches, flat list", prog("rays-flat"), "batch_trace_any"),
     ])
     wf = lambda text: (lambda rows, k, t: selected(rows, text, k, t))
+    shading = ("wf_shade", "wf_light", "wf_connect", "wf_scatter")
     specs = [("Cornell box", wf("scene cornell, wavefront"), k)
-             for k in ("wf_camera", "wf_trace", "wf_shade", "wf_shadow", "wf_next_bounce", "wf_accumulate")]
+             for k in ("wf_camera", "wf_trace") + shading + ("wf_shadow", "wf_next_bounce", "wf_accumulate")]
+    specs += [("Suzanne (glTF materials: budget 96)", wf("scene Suzanne, wavefront"), k) for k in shading]
+    specs += [("path, every feature (glTF included)", prog("wf-path-all"), k) for k in shading]
     specs += [
-        ("Suzanne (glTF materials: budget 96)", wf("scene Suzanne, wavefront"), "wf_shade"),
-        ("path, every feature (glTF included)", prog("wf-path-all"), "wf_shade"),
-        ("path, every feature and alpha", prog("wf-path-all-alpha"), "wf_shade"),
+        ("Cornell box, thesis (GGX conductor, dielectric)", wf("scene cornell-thesis, wavefront"), "wf_connect"),
+        ("Cornell box, thesis (GGX conductor, dielectric)", wf("scene cornell-thesis, wavefront"), "wf_scatter"),
         ("path, every feature and alpha", prog("wf-path-all-alpha"), "wf_trace"),
         ("path, every feature and alpha", prog("wf-path-all-alpha"), "wf_shadow"),
         ("path-bsdf, every feature", prog("wf-path-bsdf-all"), "wf_shade"),
-        ("path, diffuse alone", prog("wf-path-diffuse"), "wf_shade"),
+        ("path-bsdf, every feature", prog("wf-path-bsdf-all"), "wf_scatter"),
+        ("path, diffuse alone", prog("wf-path-diffuse"), "wf_scatter"),
         ("path, flat list, every feature", prog("wf-path-flat-all"), "wf_trace"),
     ]
     specs += [("the most registers of any program", lambda rows, k, t: largest(rows, k, t, "registers"), k)
-              for k in ("wf_trace", "wf_shade", "wf_shadow")]
-    table("Wavefront kernels (budget at sm_90: 64 registers, 256 B stack; wf_shade with glTF materials 96)",
-          specs)
+              for k in ("wf_trace",) + shading + ("wf_shadow",)]
+    table("Wavefront kernels (budget at sm_90: 64 registers, 256 B stack; the shading kernels "
+          "wf_shade, wf_connect and wf_scatter with glTF materials 96)", specs)
     table("The megakernel (no budget; on GPUs the wavefront renders path and path-bsdf by default)", [
         ("Cornell box's features (diffuse, emission, triangle lights)",
          lambda rows, k, t: selected(rows, "scene cornell", k, t), "render_paths"),
@@ -137,14 +140,21 @@ def main():
         ("film resolve", prog("path-all"), "film_resolve"),
     ])
     over = re.findall(r"clpath: over budget: ([^\n]*)", log)
+    held = re.findall(r"clpath: over budget, open: ([^\n]*)", log)
     out("## Over budget\n\n")
     if over:
         out(f"{len(over)} kernel figures over their sm_90 budget (`clpath kernels --check` fails on each):\n\n")
         for line in over:
             out(f"- {line}\n")
     else:
-        out("None: every budgeted kernel is within its sm_90 budget.\n")
+        out("None beyond the figures held below: `clpath kernels --check` passes.\n")
     out("\n")
+    if held:
+        out(f"{len(held)} kernel figures over their sm_90 budget but within the figures they are held at "
+            "(`KernelBudget` in `host/render/kernel_report.cpp`; past those they fail):\n\n")
+        for line in held:
+            out(f"- {line}\n")
+        out("\n")
     out("## Every program\n\n")
     for name, rows in (("now", after),) + ((a.before_label, before),) if before else (("now", after),):
         programs = {r["program"] for r in rows}

@@ -17,7 +17,7 @@ constexpr std::size_t kWorkGroup = 64;
 // The wavefront's paths in flight at most (its state is about 170 bytes a path).
 constexpr std::uint32_t kWavefrontPaths = 1u << 20;
 // Rows of float4 per path and per shadow ray (kernels/wavefront.cl).
-constexpr std::size_t kPathRows = 5, kShadowRows = 4;
+constexpr std::size_t kPathRows = 8, kShadowRows = 4;
 
 // The work-items of a film: whole tiles, so the last row and column of tiles are padded.
 std::uint32_t tiled_pixel_count(const Film& film) {
@@ -58,6 +58,9 @@ void IntegratorProgram::compile() {
         wf_.camera = ctx_.kernel(program_.get(), "wf_camera");
         wf_.trace = ctx_.kernel(program_.get(), "wf_trace");
         wf_.shade = ctx_.kernel(program_.get(), "wf_shade");
+        wf_.light = ctx_.kernel(program_.get(), "wf_light");
+        wf_.connect = ctx_.kernel(program_.get(), "wf_connect");
+        wf_.scatter = ctx_.kernel(program_.get(), "wf_scatter");
         wf_.shadow = ctx_.kernel(program_.get(), "wf_shadow");
         wf_.next_bounce = ctx_.kernel(program_.get(), "wf_next_bounce");
         wf_.accumulate = ctx_.kernel(program_.get(), "wf_accumulate");
@@ -146,12 +149,13 @@ void IntegratorProgram::ensure_wavefront_buffers(std::uint32_t paths) {
     ctx_.check_fits({{"wavefront path state", n * kPathRows * 16},
                      {"wavefront hits", n * 16},
                      {"wavefront shadow rays", n * kShadowRows * 16},
-                     {"wavefront queues", 2 * n * sizeof(cl_uint)}});
+                     {"wavefront queues", 3 * n * sizeof(cl_uint)}});
     wf_.paths = ctx_.buffer(n * kPathRows * 16, CL_MEM_READ_WRITE, "wavefront path state");
     wf_.hits = ctx_.buffer(n * 16, CL_MEM_READ_WRITE, "wavefront hits");
     wf_.shadows = ctx_.buffer(n * kShadowRows * 16, CL_MEM_READ_WRITE, "wavefront shadow rays");
     wf_.queues[0] = ctx_.buffer(n * sizeof(cl_uint), CL_MEM_READ_WRITE, "wavefront queue");
     wf_.queues[1] = ctx_.buffer(n * sizeof(cl_uint), CL_MEM_READ_WRITE, "wavefront queue");
+    wf_.scatter_queue = ctx_.buffer(n * sizeof(cl_uint), CL_MEM_READ_WRITE, "wavefront scatter queue");
     wf_.counts = ctx_.buffer(CLP_WF_COUNT_SLOTS * sizeof(cl_uint), CL_MEM_READ_WRITE, "wavefront queue lengths");
     wf_.capacity = paths;
 }
@@ -170,13 +174,24 @@ void IntegratorProgram::launch_waves(const DeviceScene& scene, Film& film, Pendi
     const bool read_lengths = !ctx_.device().is_gpu;
     scene.bind(wf_.trace, 0);
     scene.bind(wf_.shade, 0);
+    scene.bind(wf_.light, 0);
+    scene.bind(wf_.connect, 0);
+    scene.bind(wf_.scatter, 0);
     scene.bind(wf_.shadow, 0);
     const cl_uint k = DeviceScene::kArgCount;
     wf_.camera.arg(0, params_).arg(3, wf_.paths).arg(4, cap).arg(6, wf_.counts);
     wf_.trace.arg(k, params_).arg(k + 1, wf_.paths).arg(k + 2, cap).arg(k + 4, wf_.counts).arg(k + 5, wf_.hits)
         .arg(k + 6, counters_);
-    wf_.shade.arg(k, params_).arg(k + 1, wf_.paths).arg(k + 2, cap).arg(k + 5, wf_.counts).arg(k + 6, wf_.hits)
-        .arg(k + 7, wf_.shadows);
+    wf_.shade.arg(k, params_).arg(k + 1, wf_.paths).arg(k + 2, cap).arg(k + 4, wf_.scatter_queue)
+        .arg(k + 5, wf_.counts).arg(k + 6, wf_.hits);
+    wf_.light.arg(k, params_).arg(k + 1, wf_.paths).arg(k + 2, cap).arg(k + 3, wf_.scatter_queue)
+        .arg(k + 4, wf_.counts);
+    wf_.connect.arg(k, params_).arg(k + 1, wf_.paths).arg(k + 2, cap).arg(k + 3, wf_.scatter_queue)
+        .arg(k + 4, wf_.counts).arg(k + 5, wf_.hits).arg(k + 6, wf_.shadows);
+    wf_.scatter.arg(k, params_).arg(k + 1, wf_.paths).arg(k + 2, cap).arg(k + 3, wf_.scatter_queue)
+        .arg(k + 5, wf_.counts).arg(k + 6, wf_.hits);
+    // Next-event estimation (light samples, shadow rays): only the integrator that has it.
+    const bool sample_lights = settings_.integrator == CLP_INTEGRATOR_PATH;
     wf_.shadow.arg(k, params_).arg(k + 1, wf_.paths).arg(k + 2, cap).arg(k + 3, wf_.counts).arg(k + 4, wf_.shadows)
         .arg(k + 5, counters_);
     wf_.next_bounce.arg(0, wf_.counts);
@@ -199,9 +214,17 @@ void IntegratorProgram::launch_waves(const DeviceScene& scene, Film& film, Pendi
                 global = queued;
             }
             wf_.trace.arg(k + 3, wf_.queues[in]);
-            wf_.shade.arg(k + 3, wf_.queues[in]).arg(k + 4, wf_.queues[in ^ 1u]);
+            wf_.shade.arg(k + 3, wf_.queues[in]);
+            wf_.scatter.arg(k + 4, wf_.queues[in ^ 1u]);
+            // The paths that scatter are at most those shaded: the same
+            // launch size, the work-items past the scatter queue's end idle.
             ctx_.launch(wf_.trace, global, kWorkGroup);
             ctx_.launch(wf_.shade, global, kWorkGroup);
+            if (sample_lights) {
+                ctx_.launch(wf_.light, global, kWorkGroup);
+                ctx_.launch(wf_.connect, global, kWorkGroup);
+            }
+            ctx_.launch(wf_.scatter, global, kWorkGroup);
             ctx_.launch(wf_.shadow, global, kWorkGroup);
             ctx_.launch(wf_.next_bounce, 1, 0);
         }

@@ -79,8 +79,8 @@ private:
 
     // The wavefront's kernels and its path state, for up to `capacity` paths.
     struct WavefrontKernels {
-        Kernel camera, trace, shade, shadow, next_bounce, accumulate;
-        Buffer paths, hits, shadows, queues[2], counts;
+        Kernel camera, trace, shade, light, connect, scatter, shadow, next_bounce, accumulate;
+        Buffer paths, hits, shadows, queues[2], scatter_queue, counts;
         std::uint32_t capacity = 0;
     };
 
