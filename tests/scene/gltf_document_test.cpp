@@ -22,17 +22,6 @@ using nlohmann::json;
 
 namespace {
 
-Scene load(const std::string& name, const std::string& text) {
-    MemoryFiles f;
-    f.files[name] = text;
-    LoadOptions o = f.options();
-    o.presentation.ground = false;
-    return gltf_scene(name, o);
-}
-
-std::string error(const std::string& name, const std::string& text) {
-    return error_of([&] { (void)load(name, text); });
-}
 
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
@@ -66,30 +55,30 @@ TEST(GltfDocument, DeepJsonIsRefusedBeforeParsing) {
     const GltfBuilder g = quad_model();
     // 20,000 levels overflowed tinygltf's recursion (a segfault); now a message.
     for (std::size_t depth : {gltf::kMaxJsonDepth + 1, std::size_t(20000)}) {
-        const std::string e = error("deep.gltf", with_extras(g, int(depth)));
+        const std::string e = gltf_text_error("deep.gltf", with_extras(g, int(depth)));
         EXPECT_TRUE(has(e, "deep.gltf: the JSON nests arrays and objects deeper than 512 levels (at byte ")) << e;
     }
     std::string glb = g.glb();
     const std::string deep_glb = gltf::glb_with_json(glb, with_extras(g, 20000));
-    EXPECT_TRUE(has(error("deep.glb", deep_glb), "deep.glb: the JSON nests arrays and objects deeper than 512"));
+    EXPECT_TRUE(has(gltf_text_error("deep.glb", deep_glb), "deep.glb: the JSON nests arrays and objects deeper than 512"));
     // Brackets inside strings are text, not nesting.
     GltfBuilder quoted = quad_model();
     quoted.doc["asset"]["generator"] = std::string(5000, '[');
-    EXPECT_EQ(load("q.gltf", quoted.embedded()).triangle_count(), 2u);
+    EXPECT_EQ(gltf_text_scene("q.gltf", quoted.embedded()).triangle_count(), 2u);
     // Control: nesting up to the limit loads (the quad's own document adds 1 level).
-    EXPECT_EQ(load("ok.gltf", with_extras(g, int(gltf::kMaxJsonDepth) - 1)).triangle_count(), 2u);
+    EXPECT_EQ(gltf_text_scene("ok.gltf", with_extras(g, int(gltf::kMaxJsonDepth) - 1)).triangle_count(), 2u);
 }
 
 TEST(GltfDocument, NodePathsPastTheLimitAreRefusedQuickly) {
     // 2^40 paths to the quad: counted, not walked.
     const auto start = std::chrono::steady_clock::now();
-    const std::string e = error("dag.gltf", doubling_chain(40).embedded());
+    const std::string e = gltf_text_error("dag.gltf", doubling_chain(40).embedded());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_TRUE(has(e, "dag.gltf: scenes[0].nodes: the node hierarchy places more than 1000000 nodes")) << e;
     EXPECT_TRUE(has(e, "the limit is 1000000 placed nodes")) << e;
     EXPECT_LT(seconds, 30.0);  // generous for a loaded machine: the walk it replaces never ended
     // Control: 2^8 paths place the quad 256 times.
-    EXPECT_EQ(load("dag.gltf", doubling_chain(8).embedded()).triangle_count(), 512u);
+    EXPECT_EQ(gltf_text_scene("dag.gltf", doubling_chain(8).embedded()).triangle_count(), 512u);
     // The limit is the load's to set (LoadOptions::max_placed_nodes).
     MemoryFiles f;
     f.files["dag.gltf"] = doubling_chain(8).embedded();
@@ -101,56 +90,56 @@ TEST(GltfDocument, NodePathsPastTheLimitAreRefusedQuickly) {
     GltfBuilder g = doubling_chain(40);
     g.doc.erase("scenes");
     g.doc.erase("scene");
-    EXPECT_TRUE(has(error("dag.gltf", g.embedded()), "dag.gltf: nodes: the node hierarchy places more than 1000000"));
+    EXPECT_TRUE(has(gltf_text_error("dag.gltf", g.embedded()), "dag.gltf: nodes: the node hierarchy places more than 1000000"));
 }
 
 TEST(GltfDocument, CyclesAndRootlessHierarchiesAreNamed) {
     GltfBuilder g = quad_model();
     g.doc["nodes"] = {{{"children", {1}}}, {{"children", {2}}, {"mesh", 0}}, {{"children", {1}}}};
-    EXPECT_TRUE(has(error("c.gltf", g.embedded()), "c.gltf: nodes[1]: the node is its own ancestor (a cycle)"));
+    EXPECT_TRUE(has(gltf_text_error("c.gltf", g.embedded()), "c.gltf: nodes[1]: the node is its own ancestor (a cycle)"));
     g.doc.erase("scenes");
     g.doc.erase("scene");
     g.doc["nodes"] = {{{"children", {1}}, {"mesh", 0}}, {{"children", {0}}}};
-    EXPECT_TRUE(has(error("c.gltf", g.embedded()), "c.gltf: nodes: every node is another's child"));
+    EXPECT_TRUE(has(gltf_text_error("c.gltf", g.embedded()), "c.gltf: nodes: every node is another's child"));
     // Control: a shared child without a cycle is placed once per path.
     g.doc["nodes"] = {{{"children", {1, 2}}}, {{"children", {3}}}, {{"children", {3}}}, {{"mesh", 0}}};
-    EXPECT_EQ(load("c.gltf", g.embedded()).triangle_count(), 4u);
+    EXPECT_EQ(gltf_text_scene("c.gltf", g.embedded()).triangle_count(), 4u);
 }
 
 TEST(GltfDocument, GlbHeaderVersionMustBeTwo) {
     const std::string glb = quad_model().glb();
-    EXPECT_TRUE(has(error("v3.glb", glb_with_version(glb, 3)), "v3.glb: GLB header: version 3 is not supported"));
-    EXPECT_TRUE(has(error("v1.glb", glb_with_version(glb, 1)), "v1.glb: glTF 1.0 is not supported"));
+    EXPECT_TRUE(has(gltf_text_error("v3.glb", glb_with_version(glb, 3)), "v3.glb: GLB header: version 3 is not supported"));
+    EXPECT_TRUE(has(gltf_text_error("v1.glb", glb_with_version(glb, 1)), "v1.glb: glTF 1.0 is not supported"));
     std::string longer = glb + "pad!";
-    EXPECT_TRUE(has(error("l.glb", longer), "l.glb: GLB header: length ")) << error("l.glb", longer);
-    EXPECT_EQ(load("v2.glb", glb).triangle_count(), 2u);
+    EXPECT_TRUE(has(gltf_text_error("l.glb", longer), "l.glb: GLB header: length ")) << gltf_text_error("l.glb", longer);
+    EXPECT_EQ(gltf_text_scene("v2.glb", glb).triangle_count(), 2u);
 }
 
 TEST(GltfDocument, AssetVersionMustBeTwo) {
     GltfBuilder g = quad_model();
     g.doc["asset"]["version"] = "3.0";
-    EXPECT_TRUE(has(error("a.gltf", g.embedded()), "a.gltf: asset.version: '3.0' is not supported"));
+    EXPECT_TRUE(has(gltf_text_error("a.gltf", g.embedded()), "a.gltf: asset.version: '3.0' is not supported"));
     g.doc["asset"]["version"] = "two";
-    EXPECT_TRUE(has(error("a.gltf", g.embedded()), "a.gltf: asset.version: 'two' is not supported"));
+    EXPECT_TRUE(has(gltf_text_error("a.gltf", g.embedded()), "a.gltf: asset.version: 'two' is not supported"));
     g.doc["asset"] = {{"generator", "x"}};
-    EXPECT_TRUE(has(error("a.gltf", g.embedded()), "a.gltf: asset.version: required, but missing"));
+    EXPECT_TRUE(has(gltf_text_error("a.gltf", g.embedded()), "a.gltf: asset.version: required, but missing"));
     g.doc["asset"] = {{"version", "2.0"}, {"minVersion", "2.1"}};
-    EXPECT_TRUE(has(error("a.gltf", g.embedded()), "a.gltf: asset.minVersion: '2.1' is not supported"));
+    EXPECT_TRUE(has(gltf_text_error("a.gltf", g.embedded()), "a.gltf: asset.minVersion: '2.1' is not supported"));
     // Control: a later 2.x minor version is read as 2.0 (the specification's promise).
     g.doc["asset"] = {{"version", "2.1"}};
-    EXPECT_EQ(load("a.gltf", g.embedded()).triangle_count(), 2u);
+    EXPECT_EQ(gltf_text_scene("a.gltf", g.embedded()).triangle_count(), 2u);
 }
 
 TEST(GltfDocument, DefaultSceneMustExist) {
     GltfBuilder g = quad_model();
     g.doc["scenes"] = json::array();
     g.doc["scene"] = 0;
-    EXPECT_TRUE(has(error("s.gltf", g.embedded()), "s.gltf: scene: scene 0 does not exist (the file has 0)"));
+    EXPECT_TRUE(has(gltf_text_error("s.gltf", g.embedded()), "s.gltf: scene: scene 0 does not exist (the file has 0)"));
     g.doc["scenes"] = {{{"nodes", {0}}}};
     g.doc["scene"] = 1;
-    EXPECT_TRUE(has(error("s.gltf", g.embedded()), "s.gltf: scene: scene 1 does not exist (the file has 1)"));
+    EXPECT_TRUE(has(gltf_text_error("s.gltf", g.embedded()), "s.gltf: scene: scene 1 does not exist (the file has 1)"));
     g.doc["scene"] = 0;
-    EXPECT_EQ(load("s.gltf", g.embedded()).triangle_count(), 2u);
+    EXPECT_EQ(gltf_text_scene("s.gltf", g.embedded()).triangle_count(), 2u);
 }
 
 TEST(GltfDocument, FieldsOfTheWrongTypeOrRangeAreNamed) {
@@ -199,11 +188,11 @@ TEST(GltfDocument, FieldsOfTheWrongTypeOrRangeAreNamed) {
     for (const Case& c : cases) {
         GltfBuilder g = quad_model();
         c.breakit(g.doc);
-        const std::string e = error("bad/f.gltf", g.embedded());
+        const std::string e = gltf_text_error("bad/f.gltf", g.embedded());
         EXPECT_EQ(e.rfind("bad/f.gltf: ", 0), 0u) << e;
         EXPECT_TRUE(has(e, c.expect)) << "want: " << c.expect << "\ngot:  " << e;
         // The same document as a .glb is checked the same way.
-        const std::string eb = error("bad/f.glb", g.glb());
+        const std::string eb = gltf_text_error("bad/f.glb", g.glb());
         EXPECT_TRUE(has(eb, c.expect)) << "want: " << c.expect << "\ngot:  " << eb;
     }
     // Control: valid values of the same fields load.
@@ -217,7 +206,7 @@ TEST(GltfDocument, FieldsOfTheWrongTypeOrRangeAreNamed) {
     g.doc["nodes"][0]["extensions"]["KHR_lights_punctual"]["light"] = 0;
     g.doc["materials"] = {{{"doubleSided", true}, {"emissiveFactor", {0, 0, 0}}}};
     g.doc["meshes"][0]["primitives"][0]["material"] = 0;
-    const Scene s = load("ok.gltf", g.embedded());
+    const Scene s = gltf_text_scene("ok.gltf", g.embedded());
     EXPECT_EQ(s.triangle_count(), 2u);
     EXPECT_EQ(s.lights.size(), 1u);
     EXPECT_EQ(s.camera.height, 427);  // 640 / 1.5

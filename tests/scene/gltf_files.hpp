@@ -9,6 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "memory_files.hpp"
+#include "scene/load/gltf_scene.hpp"
+
 namespace clpath::test {
 
 inline std::string base64(const std::string& in) {
@@ -93,6 +96,21 @@ inline GltfBuilder quad_model() {
     g.doc["scenes"] = nlohmann::json::array({nlohmann::json{{"nodes", nlohmann::json::array({0})}}});
     g.doc["scene"] = 0;
     return g;
+}
+
+// A glTF file given as text, loaded as `clpath render` loads it but without
+// the presentation's ground: the scene holds the file's own triangles only.
+inline Scene gltf_text_scene(const std::string& name, const std::string& text) {
+    MemoryFiles f;
+    f.files[name] = text;
+    LoadOptions o = f.options();
+    o.presentation.ground = false;
+    return gltf_scene(name, o);
+}
+
+// The message loading that text fails with.
+inline std::string gltf_text_error(const std::string& name, const std::string& text) {
+    return error_of([&] { (void)gltf_text_scene(name, text); });
 }
 
 }  // namespace clpath::test
