@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "memory_files.hpp"
+#include "support/quantised_gltf.hpp"
 #include "scene/load/gltf_model.hpp"
 #include "scene/load/gltf_scene.hpp"
 
@@ -25,70 +26,19 @@ bool has(const std::vector<std::string>& warnings, const std::string& part) {
     return false;
 }
 
-// Bundled Suzanne quantised as gltfpack does by default: positions as plain
-// uint16 on a grid that the node's scale and translation map back, normals as
-// normalised int8, texture coordinates as normalised uint16 that a
-// KHR_texture_transform offset and scale map back; without indices.
+// Bundled Suzanne quantised as gltfpack does by default (support/quantised_gltf.hpp).
 TEST(GltfRealFiles, QuantisedSuzanneMatchesTheOriginalWithinItsSteps) {
     const LoadOptions disk;
     const GltfModel original = load_gltf(test::scenes_dir() + "/suzanne/Suzanne.gltf", disk);
     ASSERT_EQ(original.meshes.size(), 1u);
     const GltfPrimitive& p = original.meshes[0][0];
     const std::size_t n = p.vertices.size();
-    glm::vec3 lo(INFINITY), hi(-INFINITY);
-    glm::vec2 uv_lo(INFINITY), uv_hi(-INFINITY);
-    for (std::size_t i = 0; i < n; ++i) {
-        lo = glm::min(lo, p.vertices[i]);
-        hi = glm::max(hi, p.vertices[i]);
-        uv_lo = glm::min(uv_lo, p.uvs[i]);
-        uv_hi = glm::max(uv_hi, p.uvs[i]);
-    }
-    const float extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-    const float step = extent / 65535.0f;  // one grid for all axes, as gltfpack keeps the aspect
-    const glm::vec2 uv_scale = uv_hi - uv_lo;
-    std::string pos_bin, nrm_bin, uv_bin;
-    for (std::size_t i = 0; i < n; ++i) {
-        std::uint16_t q[3];
-        for (int c = 0; c < 3; ++c) q[c] = std::uint16_t(std::lround((p.vertices[i][c] - lo[c]) / step));
-        pos_bin.append(reinterpret_cast<const char*>(q), 6);
-        pos_bin.append(2, '\0');
-        std::int8_t qn[4] = {0, 0, 0, 0};
-        const glm::vec3 nn = glm::normalize(p.normals[i]);
-        for (int c = 0; c < 3; ++c) qn[c] = std::int8_t(std::lround(nn[c] * 127.0f));
-        nrm_bin.append(reinterpret_cast<const char*>(qn), 4);
-        std::uint16_t qt[2];
-        for (int c = 0; c < 2; ++c) qt[c] = std::uint16_t(std::lround((p.uvs[i][c] - uv_lo[c]) / uv_scale[c] * 65535.0f));
-        uv_bin.append(reinterpret_cast<const char*>(qt), 4);
-    }
-    const std::string bin = pos_bin + nrm_bin + uv_bin;
-    json doc = {
-        {"asset", {{"version", "2.0"}, {"generator", "a gltfpack-like quantiser (clpath test)"}}},
-        {"extensionsUsed", {"KHR_mesh_quantization", "KHR_texture_transform"}},
-        {"extensionsRequired", {"KHR_mesh_quantization"}},
-        {"buffers", {{{"byteLength", bin.size()}, {"uri", "q.bin"}}}},
-        {"bufferViews",
-         {{{"buffer", 0}, {"byteLength", pos_bin.size()}, {"byteStride", 8}},
-          {{"buffer", 0}, {"byteOffset", pos_bin.size()}, {"byteLength", nrm_bin.size()}, {"byteStride", 4}},
-          {{"buffer", 0}, {"byteOffset", pos_bin.size() + nrm_bin.size()}, {"byteLength", uv_bin.size()}, {"byteStride", 4}}}},
-        {"accessors",
-         {{{"bufferView", 0}, {"componentType", 5123}, {"count", n}, {"type", "VEC3"}},
-          {{"bufferView", 1}, {"componentType", 5120}, {"normalized", true}, {"count", n}, {"type", "VEC3"}},
-          {{"bufferView", 2}, {"componentType", 5123}, {"normalized", true}, {"count", n}, {"type", "VEC2"}}}},
-        {"materials",
-         {{{"pbrMetallicRoughness",
-            {{"baseColorTexture",
-              {{"index", 0},
-               {"extensions",
-                {{"KHR_texture_transform", {{"offset", {uv_lo.x, uv_lo.y}}, {"scale", {uv_scale.x, uv_scale.y}}}}}}}}}}}}},
-        {"textures", {{{"source", 0}}}},
-        {"images", {{{"uri", "missing-on-purpose.png"}}}},
-        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}}, {"material", 0}}}}}}},
-        {"nodes", {{{"mesh", 0}, {"translation", {lo.x, lo.y, lo.z}}, {"scale", {step, step, step}}}}},
-        {"scenes", {{{"nodes", {0}}}}},
-        {"scene", 0}};
+    const test::QuantisedGltf quantised = test::quantise_like_gltfpack(p, {"missing-on-purpose.png"}, "q.bin");
+    const float step = quantised.step, extent = quantised.extent;
+    const glm::vec2 uv_scale = quantised.uv_scale;
     MemoryFiles mem;
-    mem.files["q/model.gltf"] = doc.dump();
-    mem.files["q/q.bin"] = bin;
+    mem.files["q/model.gltf"] = quantised.doc.dump();
+    mem.files["q/q.bin"] = quantised.bin;
     const GltfModel q = load_gltf("q/model.gltf", mem.options());
     ASSERT_EQ(q.instances.size(), 1u);
     const GltfPrimitive& qp = q.meshes[0][0];
