@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <thread>
 
+#include "render/adaptive_passes.hpp"
 #include "render/checkpoint.hpp"
 #include "render/chunks.hpp"
 #include "render/process_group.hpp"
@@ -14,9 +16,15 @@ namespace clpath {
 namespace {
 
 // The sums and chunks a resumed render starts from, checked against this render.
-Checkpoint resumed(const std::string& path, std::uint64_t hash, const ChunkPlan& plan, const Camera& camera) {
+Checkpoint resumed(const std::string& path, std::uint64_t hash, const ChunkPlan& plan, const Camera& camera,
+                   double noise_target) {
     Checkpoint c = read_checkpoint(path);
     if (c.render_hash != hash) throw Error(path + ": the checkpoint is of another scene or other settings");
+    if (c.noise_target != noise_target)
+        throw Error(path + ": the checkpoint is of a render " +
+                    (c.noise_target > 0 ? "to the noise target " + std::to_string(c.noise_target)
+                                        : std::string("without a noise target")) +
+                    "; give the same --noise-target to continue it");
     if (c.plan.total_samples != plan.total_samples || c.plan.chunk_samples != plan.chunk_samples)
         throw Error(path + ": the checkpoint is of a render of " + std::to_string(c.plan.total_samples) +
                     " samples in chunks of " + std::to_string(c.plan.chunk_samples) + "; give the same --spp" +
@@ -37,11 +45,34 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
         throw Error("--checkpoint and --resume work in one process; over MPI ranks, render shorter jobs instead");
 
     const std::uint64_t hash = render_hash(scene, settings);
-    const ChunkPlan plan{o.spp, o.chunk_samples ? o.chunk_samples : default_chunk_samples(o.spp)};
+    const bool adaptive = o.noise_target > 0;
+    if (adaptive && group && group->size() > 1)
+        throw UsageError("--noise-target renders in one process (its decisions between passes need the whole film); "
+                         "use the devices of one machine (--device all)");
+    std::uint32_t chunk_samples = o.chunk_samples ? o.chunk_samples : default_chunk_samples(o.spp);
+    // The half film needs chunks of an even number of samples (AdaptivePasses).
+    if (adaptive && !o.chunk_samples) chunk_samples += chunk_samples % 2;
+    const ChunkPlan plan{o.spp, chunk_samples};
+    std::unique_ptr<AdaptivePasses> passes;
+    if (adaptive) {
+        try {
+            passes = std::make_unique<AdaptivePasses>(plan, o.noise_target, scene.camera.width, scene.camera.height,
+                                                      o.adaptive_rule);
+        } catch (const Error& e) {
+            throw UsageError(std::string("--noise-target: ") + e.what());
+        }
+    }
     ExactFilm start;
     std::vector<std::uint64_t> done;
     if (!o.resume_path.empty()) {
-        Checkpoint c = resumed(o.resume_path, hash, plan, scene.camera);
+        Checkpoint c = resumed(o.resume_path, hash, plan, scene.camera, o.noise_target);
+        if (passes) {
+            try {
+                passes->resume(c.film, c.done_chunks);
+            } catch (const Error& e) {
+                throw Error(o.resume_path + ": " + e.what());
+            }
+        }
         start = std::move(c.film);
         done = std::move(c.done_chunks);
     }
@@ -52,19 +83,56 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
     DeviceFarm farm(devices, scene, settings, std::move(start), done);
     if (hooks.on_start) hooks.on_start(farm.bvh_stats());
     ChunkQueue queue(plan, o.time_limit, done);
+    if (passes) {
+        farm.use_passes(kAdaptivePassChunks);
+        if (passes->converged() || passes->ended()) {
+            queue.stop();  // a resumed render that was already done
+            farm.close_passes();
+        } else {
+            farm.open_pass(passes->pass(), passes->mask());
+        }
+    }
     farm.start(group ? group->chunk_source(queue) : queue, hooks.on_chunk);
 
     auto last_checkpoint = std::chrono::steady_clock::now();
     std::uint64_t checkpointed_spp = farm.samples_per_pixel();
-    auto save_checkpoint = [&] {
-        Checkpoint c;
+    auto write = [&](Checkpoint& c) {
         c.render_hash = hash;
         c.plan = plan;
-        c.film = farm.snapshot(&c.done_chunks);
+        c.noise_target = o.noise_target;
         std::sort(c.done_chunks.begin(), c.done_chunks.end());
         write_checkpoint(o.checkpoint_path, c);
         checkpointed_spp = c.film.samples_per_pixel();
         last_checkpoint = std::chrono::steady_clock::now();
+    };
+    auto save_checkpoint = [&] {
+        Checkpoint c;
+        c.film = farm.snapshot(&c.done_chunks);
+        write(c);
+    };
+    auto checkpoint_due = [&](std::uint64_t spp) {
+        return o.checkpoint_seconds > 0 && spp > checkpointed_spp &&
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >=
+                   o.checkpoint_seconds;
+    };
+    // Adaptive: the film at the last pass boundary, the only place its
+    // checkpoints are taken (a resumed render must decide as this one did).
+    Checkpoint boundary;
+    auto adaptive_poll = [&] {
+        if (passes->converged() || passes->ended() || r.stopped) return;
+        const std::uint64_t want = passes->chunks_in(passes->pass());
+        if (farm.chunks_done_in_pass(passes->pass()) < want) return;
+        boundary = Checkpoint{};
+        boundary.film = farm.snapshot(&boundary.done_chunks);
+        const bool more = passes->finish_pass(boundary.film);
+        if (more) {
+            farm.open_pass(passes->pass(), passes->mask());
+        } else if (passes->converged()) {
+            r.converged = true;
+            queue.stop();
+            farm.close_passes();
+        }
+        if (checkpoint_due(boundary.film.samples_per_pixel())) write(boundary);
     };
     auto poll = [&] {
         if (!r.stopped && hooks.stop_requested && hooks.stop_requested()) {
@@ -73,11 +141,9 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
             farm.cancel();
         }
         if (hooks.on_progress) hooks.on_progress(farm.samples_per_pixel());
+        if (passes) return adaptive_poll();
         // A checkpoint is written when there is something new to keep.
-        if (o.checkpoint_seconds > 0 && farm.samples_per_pixel() > checkpointed_spp &&
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >=
-                o.checkpoint_seconds)
-            save_checkpoint();
+        if (checkpoint_due(farm.samples_per_pixel())) save_checkpoint();
     };
     try {
         if (group)
@@ -93,11 +159,25 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
         throw;
     }
     farm.wait();
-    // A stopped render keeps all it did: resuming it loses no finished chunk.
-    if (r.stopped && o.checkpoint_seconds > 0 && farm.samples_per_pixel() > checkpointed_spp) save_checkpoint();
+    // A stopped render keeps all it did (an adaptive one, all it did up to its
+    // last pass boundary): resuming it loses no finished chunk.
+    if (r.stopped && o.checkpoint_seconds > 0) {
+        if (!passes && farm.samples_per_pixel() > checkpointed_spp) save_checkpoint();
+        if (passes && boundary.film.samples_per_pixel() > checkpointed_spp) write(boundary);
+    }
     r.wall_seconds = lead ? queue.seconds_since_start()
                           : std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    r.film = farm.snapshot();
+    if (passes) {
+        // The devices may end before the last pass was seen complete.
+        if (!r.stopped) adaptive_poll();
+        std::vector<std::uint64_t> final_done;
+        r.film = farm.snapshot(&final_done);
+        if (r.film.half().empty()) r.film.half().assign(r.film.sums().size() / 3, 0);
+        r.film.set_pixel_samples(passes->counts_with(final_done));
+        r.converged = passes->converged();
+    } else {
+        r.film = farm.snapshot();
+    }
     r.shares = farm.shares();
     r.bvh = farm.bvh_stats();
     if (group) {
