@@ -50,8 +50,9 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
         throw UsageError("--noise-target renders in one process (its decisions between passes need the whole film); "
                          "use the devices of one machine (--device all)");
     std::uint32_t chunk_samples = o.chunk_samples ? o.chunk_samples : default_chunk_samples(o.spp);
-    // The half film needs chunks of an even number of samples (AdaptivePasses).
-    if (adaptive && !o.chunk_samples) chunk_samples += chunk_samples % 2;
+    // Adaptive: decisions every pass of 4 chunks, so chunks of at most 8
+    // samples (a decision every 32); the half film needs an even number.
+    if (adaptive && !o.chunk_samples) chunk_samples = std::clamp<std::uint32_t>(chunk_samples + chunk_samples % 2, 2, 8);
     const ChunkPlan plan{o.spp, chunk_samples};
     std::unique_ptr<AdaptivePasses> passes;
     if (adaptive) {
