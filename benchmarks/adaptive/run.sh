@@ -30,8 +30,8 @@ scenes=(
   "suzanne|scenes/suzanne/Suzanne.gltf|a bare mesh under the presentation's sky and sun: sky pixels converge at once"
   "glass-in-glass|scenes/hard/glass-in-glass.json|nested dielectrics under a constant environment"
 )
-targets=(0.02 0.01)
-cap=4096
+targets=(0.05 0.02)
+cap=1024
 rounds=3
 if [ "${CLPATH_ADAPTIVE_QUICK:-0}" = 1 ]; then
   scenes=("${scenes[@]:0:1}"); targets=(0.05); cap=256; rounds=1

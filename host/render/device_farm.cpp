@@ -78,8 +78,10 @@ void DeviceFarm::run_device(std::size_t i, ChunkSource& source) {
             for (;;) {
                 {
                     std::unique_lock<std::mutex> lock(mutex_);
+                    // Woken by open_pass, close_passes and a snapshot request (to answer it).
                     pass_cv_.wait_for(lock, std::chrono::milliseconds(5), [&] {
-                        return cancel_ || passes_closed_ || (pass_opened_ && open_pass_ >= pass);
+                        return cancel_ || passes_closed_ || (pass_opened_ && open_pass_ >= pass) ||
+                               (published_[i].has_chunks && published_[i].answered < snapshot_request_);
                     });
                     if (cancel_ || passes_closed_) break;
                     if (pass_opened_ && open_pass_ >= pass) {
@@ -190,6 +192,7 @@ void DeviceFarm::wait() {
 ExactFilm DeviceFarm::snapshot(std::vector<std::uint64_t>* done_chunks) const {
     std::unique_lock<std::mutex> lock(mutex_);
     const std::uint64_t request = ++snapshot_request_;
+    pass_cv_.notify_all();  // devices waiting for a pass answer at once
     // A device with no chunk yet has nothing to give; one whose thread ended
     // (finished, cancelled or failed) gave its final film.
     published_cv_.wait(lock, [&] {

@@ -152,7 +152,8 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
         else
             while (!farm.finished()) {
                 poll();
-                std::this_thread::sleep_for(std::chrono::milliseconds(10));
+                // Adaptive: a pass boundary leaves the devices waiting for this thread's decision.
+                std::this_thread::sleep_for(std::chrono::milliseconds(passes ? 1 : 10));
             }
     } catch (...) {
         farm.cancel();
