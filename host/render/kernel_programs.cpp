@@ -125,7 +125,7 @@ ProgramSpec integrator_program(const KernelFeatures& features, KernelCode code) 
     p.name = std::string(integrator_name(features.integrator));
     p.roots = renderer_kernel_files();
     p.options = build_options(features) + code_options(code);
-    p.kernels = {"render_paths", "film_resolve", "film_add_exact"};
+    p.kernels = {"render_paths", "film_resolve", "film_add_exact", "film_add_exact_half"};
     return p;
 }
 
@@ -135,7 +135,7 @@ ProgramSpec wavefront_program(const KernelFeatures& features, KernelCode code) {
     p.roots = wavefront_kernel_files();
     p.options = build_options(features) + code_options(code);
     p.kernels = {"wf_camera",     "wf_trace",      "wf_shade",     "wf_shadow",
-                 "wf_next_bounce", "wf_accumulate", "film_resolve", "film_add_exact"};
+                 "wf_next_bounce", "wf_accumulate", "film_resolve", "film_add_exact", "film_add_exact_half"};
     return p;
 }
 
