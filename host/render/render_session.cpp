@@ -1,6 +1,9 @@
 #include "render/render_session.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <mutex>
+#include <optional>
 #include <chrono>
 #include <memory>
 #include <thread>
@@ -34,6 +37,31 @@ Checkpoint resumed(const std::string& path, std::uint64_t hash, const ChunkPlan&
     return c;
 }
 
+// A process's share of the chunks when the processes of a group take fixed
+// shares (adaptive sampling over MPI ranks): chunk k goes to rank k % size.
+class RankChunks : public ChunkSource {
+public:
+    RankChunks(ChunkSource& all, int rank, int size) : all_(all), rank_(std::uint64_t(rank)), size_(std::uint64_t(size)) {}
+    std::optional<Chunk> next() override {
+        std::lock_guard<std::mutex> lock(mutex_);
+        for (;;) {
+            std::optional<Chunk> c = all_.next();
+            if (!c || c->index % size_ == rank_) return c;
+        }
+    }
+    // Chunks of [first, first + count) that are this rank's.
+    std::uint64_t share(std::uint64_t first, std::uint64_t count) const {
+        std::uint64_t n = 0;
+        for (std::uint64_t k = first; k < first + count; ++k) n += k % size_ == rank_;
+        return n;
+    }
+
+private:
+    ChunkSource& all_;
+    std::uint64_t rank_, size_;
+    std::mutex mutex_;
+};
+
 }  // namespace
 
 SessionResult render_session(const Scene& scene, const RenderSettings& settings,
@@ -46,9 +74,13 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
 
     const std::uint64_t hash = render_hash(scene, settings);
     const bool adaptive = o.noise_target > 0;
-    if (adaptive && group && group->size() > 1)
-        throw UsageError("--noise-target renders in one process (its decisions between passes need the whole film); "
-                         "use the devices of one machine (--device all)");
+    // Adaptive over processes: each renders the chunks k with k % size ==
+    // rank (RankChunks), and at every pass boundary all add their films
+    // (sum_films), so each holds the same film and takes the same decision.
+    // A time budget would end the ranks at different chunks of a pass.
+    const bool ranks = group && group->size() > 1;
+    if (adaptive && ranks && (o.spp == 0 || o.time_limit > 0))
+        throw UsageError("--noise-target over MPI ranks needs --spp and no --time (the ranks must end at the same pass)");
     std::uint32_t chunk_samples = o.chunk_samples ? o.chunk_samples : default_chunk_samples(o.spp);
     // Adaptive: decisions every pass of 4 chunks, so chunks of at most 8
     // samples (a decision every 32); the half film needs an even number.
@@ -77,7 +109,10 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
         start = std::move(c.film);
         done = std::move(c.done_chunks);
     }
-    if (group) group->check_same(hash, "the scene and render settings");
+    if (group) {
+        group->check_same(hash, "the scene and render settings");
+        group->check_same(std::bit_cast<std::uint64_t>(o.noise_target), "--noise-target");
+    }
 
     SessionResult r;
     r.leads = lead;
@@ -93,7 +128,9 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
             farm.open_pass(passes->pass(), passes->mask());
         }
     }
-    farm.start(group ? group->chunk_source(queue) : queue, hooks.on_chunk);
+    RankChunks rank_chunks(queue, ranks ? group->rank() : 0, ranks ? group->size() : 1);
+    const bool adaptive_ranks = adaptive && ranks;
+    farm.start(adaptive_ranks ? rank_chunks : group ? group->chunk_source(queue) : queue, hooks.on_chunk);
 
     auto last_checkpoint = std::chrono::steady_clock::now();
     std::uint64_t checkpointed_spp = farm.samples_per_pixel();
@@ -121,10 +158,15 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
     Checkpoint boundary;
     auto adaptive_poll = [&] {
         if (passes->converged() || passes->ended() || r.stopped) return;
-        const std::uint64_t want = passes->chunks_in(passes->pass());
+        std::uint64_t want = passes->chunks_in(passes->pass());
+        if (adaptive_ranks) want = rank_chunks.share(passes->pass() * kAdaptivePassChunks, want);
         if (farm.chunks_done_in_pass(passes->pass()) < want) return;
         boundary = Checkpoint{};
         boundary.film = farm.snapshot(&boundary.done_chunks);
+        if (adaptive_ranks) {
+            if (boundary.film.half().empty()) boundary.film.half().assign(boundary.film.sums().size() / 3, 0);
+            group->sum_films(boundary.film);
+        }
         const bool more = passes->finish_pass(boundary.film);
         if (more) {
             farm.open_pass(passes->pass(), passes->mask());
@@ -147,7 +189,7 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
         if (checkpoint_due(farm.samples_per_pixel())) save_checkpoint();
     };
     try {
-        if (group)
+        if (group && !adaptive_ranks)
             group->run_chunks(queue, farm, poll);
         else
             while (!farm.finished()) {
@@ -170,8 +212,11 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
     r.wall_seconds = lead ? queue.seconds_since_start()
                           : std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (passes) {
-        // The devices may end before the last pass was seen complete.
+        // The devices may end before the last pass was seen complete; over
+        // ranks, one whose share of the later passes is empty still takes
+        // part in their boundaries' sums.
         if (!r.stopped) adaptive_poll();
+        while (adaptive_ranks && !r.stopped && !passes->converged() && !passes->ended()) adaptive_poll();
         std::vector<std::uint64_t> final_done;
         r.film = farm.snapshot(&final_done);
         if (r.film.half().empty()) r.film.half().assign(r.film.sums().size() / 3, 0);

@@ -69,10 +69,19 @@ if(CLPATH_WITH_MPI)
     clpath_command_test(mpi_rank_dies FAIL OUTPUT "exited on signal 9" FORBID ${SCALE_OUT}/dies.pfm
         CMD ${MPIRUN} -n 1 ${C} render --spp 100000 --width 40 --height 32 -q -o ${SCALE_OUT}/dies.pfm
             : -n 1 ${CMAKE_CURRENT_SOURCE_DIR}/cli/dying_rank.sh)
-    # Adaptive sampling needs the whole film between passes: refused over ranks, clearly.
-    clpath_command_test(mpi_noise_target_refused FAIL OUTPUT "--noise-target renders in one process"
-        FORBID ${SCALE_OUT}/adaptive-ranks.pfm
-        CMD ${MPIRUN} -n 2 ${C} ${SMALL} --noise-target 0.1 -o ${SCALE_OUT}/adaptive-ranks.pfm)
+    # Adaptive sampling over ranks: each takes a fixed share of every pass's
+    # chunks and the ranks add their films at each boundary, so two ranks give
+    # one process's image and sample counts, bit for bit.
+    clpath_same_image_test(mpi_two_ranks_adaptive_same_bits
+        "${C} ${ADAPTIVE_ARGS} -o ${SCALE_OUT}/adaptive-rank1.pfm --sample-count-image ${SCALE_OUT}/adaptive-rank1-n.pfm|${MPIRUN_ARGS} -n 2 ${C} ${ADAPTIVE_ARGS} -o ${SCALE_OUT}/adaptive-ranks2.pfm --sample-count-image ${SCALE_OUT}/adaptive-ranks2-n.pfm"
+        "${SCALE_OUT}/adaptive-rank1.pfm;${SCALE_OUT}/adaptive-ranks2.pfm" "")
+    clpath_same_image_test(mpi_two_ranks_adaptive_same_counts
+        "${C} ${ADAPTIVE_ARGS} -o ${SCALE_OUT}/adaptive-rank1b.pfm --sample-count-image ${SCALE_OUT}/adaptive-rank1b-n.pfm|${MPIRUN_ARGS} -n 2 ${C} ${ADAPTIVE_ARGS} -o ${SCALE_OUT}/adaptive-ranks2b.pfm --sample-count-image ${SCALE_OUT}/adaptive-ranks2b-n.pfm"
+        "${SCALE_OUT}/adaptive-rank1b-n.pfm;${SCALE_OUT}/adaptive-ranks2b-n.pfm" "")
+    # With a time budget the ranks could end at different chunks of a pass: refused, clearly.
+    clpath_command_test(mpi_noise_target_time_refused FAIL OUTPUT "--noise-target over MPI ranks needs --spp and no --time"
+        FORBID ${SCALE_OUT}/adaptive-ranks-time.pfm
+        CMD ${MPIRUN} -n 2 ${C} ${SMALL} --time 5 --noise-target 0.1 -o ${SCALE_OUT}/adaptive-ranks-time.pfm)
     # A convergence study over ranks: every configuration is measured once and reported by rank 0.
     clpath_command_test(mpi_bench_convergence
         OUTPUT "spread over 2 MPI ranks.*\\| thesis .*\\| cosine .*\\| no-rr .*\\| throughput-rr .*\\| nee-mis .*\\| bvh .*\\| clpath "
