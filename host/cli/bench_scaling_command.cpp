@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -51,6 +52,9 @@ int run_scaling_cli(const ScalingCliOptions& c) {
         o.path_width = 16;
         o.path_height = 12;
         o.path_spp = 1;
+        // Every row is measured: the sizes are tiny, and a cap predicted from
+        // one row's time would skip rows on a loaded machine and not on an idle one.
+        o.time_cap_s = std::numeric_limits<double>::infinity();
     }
     if (o.ray_width % int(CLP_BATCH_TILE) || o.ray_height % int(CLP_BATCH_TILE))
         throw UsageError("--width and --height must be multiples of " + std::to_string(CLP_BATCH_TILE));
