@@ -55,7 +55,7 @@ clpath_usage_test(checkpoint_folder_missing RC 2 ARGS render --spp 4 --checkpoin
                   OUTPUT "clpath: error: --checkpoint-file .*/no/such/folder/c\\.ckpt: folder .*/no/such/folder does not exist"
                   REJECT "rendering 'cornell'")
 clpath_usage_test(checkpoint_file_is_folder RC 2 ARGS render --spp 4 --checkpoint 1 --checkpoint-file ${SCALE_OUT}
-                  -o ${SCALE_OUT}/cf.pfm FORBID ${SCALE_OUT}/cf.pfm
+                  -o ${SCALE_OUT}/cf-folder.pfm FORBID ${SCALE_OUT}/cf-folder.pfm
                   OUTPUT "clpath: error: --checkpoint-file .*scale-out-test: is a folder \\(name a file in it\\)")
 
 add_test(NAME cli.scale.interrupt_checkpoint_resume
