@@ -13,6 +13,14 @@ static inline void kahan_add(float3* sum, float3* comp, float3 x) {
     *sum = t;
 }
 
+/* The same for one float: the adaptive sampler's half film (film w lanes). */
+static inline void kahan_add1(float* sum, float* comp, float x) {
+    float y = x - *comp;
+    float t = *sum + y;
+    *comp = (t - *sum) - y;
+    *sum = t;
+}
+
 /* sRGB transfer function (IEC 61966-2-1). */
 static inline float srgb_encode(float x) {
     x = clamp(x, 0.0f, 1.0f);
@@ -101,6 +109,21 @@ kernel void film_add_exact(global AccumPixel* accum, uint count, global ulong2* 
     }
     for (int c = 0; c < 3; ++c) exact[3 * i + c] = add128(exact[3 * i + c], d[c]);
     for (int c = 0; c < 4; ++c) accum[i].sum[c] = accum[i].comp[c] = 0.0f;
+}
+
+/* Adaptive sampling's half film: half_film[i] += fixed(sum.w) - fixed(comp.w),
+ * enqueued before film_add_exact, which then empties the chunk film. Same
+ * error bits as film_add_exact. */
+kernel void film_add_exact_half(global const AccumPixel* accum, uint count, global ulong2* half_film, global uint* error) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    uint bad = 0;
+    ulong2 d = add128(fixed_from_float(accum[i].sum[3], &bad), neg128(fixed_from_float(accum[i].comp[3], &bad)));
+    if (bad) {
+        atomic_or(error, bad);
+        return;
+    }
+    half_film[i] = add128(half_film[i], d);
 }
 
 #endif

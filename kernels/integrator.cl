@@ -94,7 +94,7 @@ CLP_GPU_INLINE float3 integrate(const SceneData* sc, Ray ray, Rng* rng, uint* ra
 /* ---- the kernel --------------------------------------------------------- */
 
 kernel void render_paths(CLP_SCENE_PARAMS constant const FrameParams* fp, global AccumPixel* accum,
-                         global Counters* counters) {
+                         global Counters* counters, global const uchar* active) {
     local uint group_rays, group_nonfinite;
     if (get_local_id(0) == 0) group_rays = group_nonfinite = 0;
     barrier(CLK_LOCAL_MEM_FENCE);
@@ -107,23 +107,32 @@ kernel void render_paths(CLP_SCENE_PARAMS constant const FrameParams* fp, global
     if (gid < fp->pixel_count &&
         tile_to_pixel(fp->pixel_offset + gid, fp->camera.width, fp->camera.height, &px, &py)) {
         uint pixel = py * fp->camera.width + px;
-        float3 sum = load3g(accum[pixel].sum), comp = load3g(accum[pixel].comp);
-        for (uint s = 0; s < fp->samples; ++s) {
-            Rng rng = rng_seed(pixel, fp->first_sample + s, fp->seed);
-            float jx = rng_next(&rng), jy = rng_next(&rng);
-            Ray ray = camera_ray(&fp->camera, px, py, jx, jy);
-            camera_lens(&fp->camera, &rng, &ray);
-            float3 L = integrate(&sc, ray, &rng, &rays);
-            /* A non-finite sample would poison the pixel forever: count it, drop it. */
-            if (!all(isfinite(L))) {
-                ++nonfinite;
-                L = (float3)(0.0f);
+        /* Under adaptive sampling a converged pixel takes no sample. */
+        if (!fp->adaptive || active[pixel]) {
+            float3 sum = load3g(accum[pixel].sum), comp = load3g(accum[pixel].comp);
+            float half_sum = accum[pixel].sum[3], half_comp = accum[pixel].comp[3];
+            for (uint s = 0; s < fp->samples; ++s) {
+                Rng rng = rng_seed(pixel, fp->first_sample + s, fp->seed);
+                float jx = rng_next(&rng), jy = rng_next(&rng);
+                Ray ray = camera_ray(&fp->camera, px, py, jx, jy);
+                camera_lens(&fp->camera, &rng, &ray);
+                float3 L = integrate(&sc, ray, &rng, &rays);
+                /* A non-finite sample would poison the pixel forever: count it, drop it. */
+                if (!all(isfinite(L))) {
+                    ++nonfinite;
+                    L = (float3)(0.0f);
+                }
+                kahan_add(&sum, &comp, L);
+                if (fp->adaptive && ((fp->first_sample + s) & 1u)) kahan_add1(&half_sum, &half_comp, L.x + L.y + L.z);
             }
-            kahan_add(&sum, &comp, L);
-        }
-        for (int c = 0; c < 3; ++c) {
-            accum[pixel].sum[c] = c == 0 ? sum.x : (c == 1 ? sum.y : sum.z);
-            accum[pixel].comp[c] = c == 0 ? comp.x : (c == 1 ? comp.y : comp.z);
+            for (int c = 0; c < 3; ++c) {
+                accum[pixel].sum[c] = c == 0 ? sum.x : (c == 1 ? sum.y : sum.z);
+                accum[pixel].comp[c] = c == 0 ? comp.x : (c == 1 ? comp.y : comp.z);
+            }
+            if (fp->adaptive) {
+                accum[pixel].sum[3] = half_sum;
+                accum[pixel].comp[3] = half_comp;
+            }
         }
     }
     /* One global atomic per work-group rather than per work-item. */

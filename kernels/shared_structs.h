@@ -309,7 +309,9 @@ typedef struct {
     uint env_height;
     uint scene_flags;      /* CLP_SCENE_*: what the scene really has, for kernels compiled with every feature */
     uint attr_stride;      /* floats per triangle in the attribute buffer (CLP_SCENE_UVS, _TANGENTS, _COLORS) */
-    uint pad1, pad2, pad3;
+    uint adaptive;         /* 1: adaptive sampling; only pixels whose `active` byte is set take samples, and the
+                              film's w lanes sum r+g+b of odd-indexed samples (render/adaptive.hpp) */
+    uint pad2, pad3;
 } FrameParams;
 
 /* Counters the kernels bump with atomics; the host reads and clears them per launch. */
@@ -322,8 +324,10 @@ typedef struct {
 
 /* Running per-pixel sum, Kahan-compensated so that a float sum of a million
  * samples does not drift (Kahan 1965): sum holds the total, comp the lost
- * low-order part. w of sum counts nothing; the sample count is uniform and
- * kept by the host. */
+ * low-order part. The w lanes are zero, except under adaptive sampling
+ * (FrameParams.adaptive), where they hold the compensated sum of r+g+b over
+ * the pixel's odd-indexed samples: the second half film the noise estimate
+ * compares with the whole. The sample count is kept by the host. */
 typedef struct {
     float sum[4];
     float comp[4];

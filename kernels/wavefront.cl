@@ -95,7 +95,7 @@ static inline void wf_count(local uint* group, uint n, global uint* total) {
 }
 
 kernel void wf_camera(constant const FrameParams* fp, uint first, uint samples, global float4* paths,
-                      uint capacity, global uint* queue, global uint* counts) {
+                      uint capacity, global uint* queue, global uint* counts, global const uchar* active) {
     /* Path slot = j * pixel_count + the pixel's slot in the band: sample
      * first + j of that pixel. */
     uint slot = get_global_id(0), px, py;
@@ -103,6 +103,8 @@ kernel void wf_camera(constant const FrameParams* fp, uint first, uint samples, 
     uint j = slot / fp->pixel_count;
     if (!tile_to_pixel(fp->pixel_offset + slot - j * fp->pixel_count, fp->camera.width, fp->camera.height, &px, &py))
         return;
+    /* Under adaptive sampling a converged pixel starts no path (wf_accumulate skips it too). */
+    if (fp->adaptive && !active[py * fp->camera.width + px]) return;
     Rng rng = rng_seed(py * fp->camera.width + px, fp->first_sample + first + j, fp->seed);
     float jx = rng_next(&rng), jy = rng_next(&rng);
     Ray ray = camera_ray(&fp->camera, px, py, jx, jy);
@@ -329,29 +331,40 @@ kernel void wf_next_bounce(global uint* counts) {
 }
 
 /* The wave's radiance joins each pixel's compensated sum, its samples in
- * order, as render_paths adds them. */
+ * order, as render_paths adds them (first: the wave's first sample in the
+ * launch, for the adaptive half film's odd samples). */
 kernel void wf_accumulate(constant const FrameParams* fp, uint samples, global const float4* paths, uint capacity,
-                          global AccumPixel* accum, global Counters* counters) {
+                          global AccumPixel* accum, global Counters* counters, global const uchar* active,
+                          uint first) {
     local uint group_nonfinite;
     uint slot = get_global_id(0), px, py, nonfinite = 0;
     if (slot < fp->pixel_count &&
         tile_to_pixel(fp->pixel_offset + slot, fp->camera.width, fp->camera.height, &px, &py)) {
         uint pixel = py * fp->camera.width + px;
-        float3 sum = load3g(accum[pixel].sum), comp = load3g(accum[pixel].comp);
-        for (uint j = 0; j < samples; ++j) {
-            float3 L = paths[CLP_WF_ROW_L * capacity + j * fp->pixel_count + slot].xyz;
-            if (!all(isfinite(L))) {
-                ++nonfinite;
-                L = (float3)(0.0f);
+        if (!fp->adaptive || active[pixel]) {
+            float3 sum = load3g(accum[pixel].sum), comp = load3g(accum[pixel].comp);
+            float half_sum = accum[pixel].sum[3], half_comp = accum[pixel].comp[3];
+            for (uint j = 0; j < samples; ++j) {
+                float3 L = paths[CLP_WF_ROW_L * capacity + j * fp->pixel_count + slot].xyz;
+                if (!all(isfinite(L))) {
+                    ++nonfinite;
+                    L = (float3)(0.0f);
+                }
+                kahan_add(&sum, &comp, L);
+                if (fp->adaptive && ((fp->first_sample + first + j) & 1u))
+                    kahan_add1(&half_sum, &half_comp, L.x + L.y + L.z);
             }
-            kahan_add(&sum, &comp, L);
+            accum[pixel].sum[0] = sum.x;
+            accum[pixel].sum[1] = sum.y;
+            accum[pixel].sum[2] = sum.z;
+            accum[pixel].comp[0] = comp.x;
+            accum[pixel].comp[1] = comp.y;
+            accum[pixel].comp[2] = comp.z;
+            if (fp->adaptive) {
+                accum[pixel].sum[3] = half_sum;
+                accum[pixel].comp[3] = half_comp;
+            }
         }
-        accum[pixel].sum[0] = sum.x;
-        accum[pixel].sum[1] = sum.y;
-        accum[pixel].sum[2] = sum.z;
-        accum[pixel].comp[0] = comp.x;
-        accum[pixel].comp[1] = comp.y;
-        accum[pixel].comp[2] = comp.z;
     }
     wf_count(&group_nonfinite, nonfinite, &counters->nonfinite);
 }

@@ -81,7 +81,30 @@ struct RenderOptions {
     bool no_ground = false;
     bool no_partial = false;
     bool denoise = false;
+    std::optional<double> noise_target;
+    std::vector<std::string> sample_count_images;
 };
+
+// Each pixel's sample count as an image: the count itself in EXR and PFM, in
+// PNG grey from black (none) to white (the most any pixel took).
+RenderedImage sample_count_image(const ExactFilm& film) {
+    RenderedImage out;
+    out.linear.width = film.width();
+    out.linear.height = film.height();
+    const std::size_t pixels = std::size_t(film.width()) * std::size_t(film.height());
+    out.linear.rgb.resize(pixels * 3);
+    std::uint64_t most = 1;
+    for (std::size_t p = 0; p < pixels; ++p) most = std::max(most, film.samples_of(p));
+    out.srgb8.resize(pixels * 4);
+    for (std::size_t p = 0; p < pixels; ++p) {
+        const std::uint64_t n = film.samples_of(p);
+        for (int c = 0; c < 3; ++c) out.linear.rgb[p * 3 + c] = float(n);
+        const auto grey = std::uint8_t(std::lround(255.0 * double(n) / double(most)));
+        out.srgb8[p * 4] = out.srgb8[p * 4 + 1] = out.srgb8[p * 4 + 2] = grey;
+        out.srgb8[p * 4 + 3] = 255;
+    }
+    return out;
+}
 
 // Only a bare mesh (an OBJ, or a glTF model) gets the presentation's ground
 // (docs/scene-format.md, "Bare meshes"); scene files and built-in scenes do not.
@@ -176,6 +199,9 @@ int run_render(const RenderOptions& o) {
         check_output_path(out);
         if (o.denoise) check_output_path(denoised_path(out));
     }
+    // The scene file's render block gives the default noise target, as it gives spp.
+    const double noise_target = o.noise_target ? *o.noise_target : scene.render.noise_target;
+    for (const auto& f : o.sample_count_images) check_output_path(f);
     // The library is loaded and its device made before anything renders, so
     // a missing library costs no render.
     std::unique_ptr<Denoiser> denoiser;
@@ -216,6 +242,7 @@ int run_render(const RenderOptions& o) {
     so.checkpoint_seconds = o.checkpoint_seconds;
     so.checkpoint_path = checkpoint_path;
     so.resume_path = o.resume;
+    so.noise_target = noise_target;
     const bool show_progress = !o.quiet && lead;
     InterruptFlag interrupt;
     // Progress keeps its own clock, started once the scene is prepared: the
@@ -282,6 +309,10 @@ int run_render(const RenderOptions& o) {
         write_image(out, image);
         if (!o.quiet) std::fprintf(stderr, "clpath: wrote %s\n", out.c_str());
     }
+    for (const auto& f : o.sample_count_images) {
+        write_image(f, sample_count_image(result.film));
+        if (!o.quiet) std::fprintf(stderr, "clpath: wrote %s\n", f.c_str());
+    }
     double denoise_seconds = 0;
     if (denoiser && result.stopped) {
         std::fprintf(stderr, "clpath: interrupted: not denoised\n");
@@ -308,21 +339,43 @@ int run_render(const RenderOptions& o) {
 
     // Rates count this run's samples only: a resumed render's earlier ones took no time here.
     const double wall = result.wall_seconds;
+    // Samples this run took (a resumed render's earlier ones took no time
+    // here): each pixel's own count under adaptive sampling, less what the
+    // checkpoint held (at most resumed_spp per pixel).
     const std::uint64_t run_spp = done_spp - std::min(done_spp, result.resumed_spp);
-    const double samples = double(run_spp) * scene.camera.width * scene.camera.height;
+    double samples = double(run_spp) * scene.camera.width * scene.camera.height;
+    std::string adaptive_summary;
+    if (noise_target > 0) {
+        std::uint64_t least = ~0ull, most = 0;
+        double taken = 0;
+        samples = 0;
+        const std::size_t pixels = std::size_t(scene.camera.width) * std::size_t(scene.camera.height);
+        for (std::size_t p = 0; p < pixels; ++p) {
+            const std::uint64_t n = result.film.samples_of(p);
+            least = std::min(least, n);
+            most = std::max(most, n);
+            taken += double(n);
+            samples += double(n - std::min(n, result.resumed_spp));
+        }
+        char buf[200];
+        std::snprintf(buf, sizeof buf, " noise_target=%g spp_min=%llu spp_max=%llu spp_mean=%.2f converged=%d",
+                      noise_target, (unsigned long long)least, (unsigned long long)most, taken / double(pixels),
+                      result.converged ? 1 : 0);
+        adaptive_summary = buf;
+    }
     std::string device_names;
     for (const auto& d : devices) device_names += (device_names.empty() ? "" : ", ") + d.name;
     std::printf(
         "summary: device=\"%s\" devices=%zu integrator=%s triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f "
         "spp=%llu render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s kernel=%s "
-        "bytes_to_device=%llu bytes_from_device=%llu%s%s%s\n",
+        "bytes_to_device=%llu bytes_from_device=%llu%s%s%s%s\n",
         device_names.c_str(), result.shares.size(), integrator_name(settings.integrator), scene.triangle_count(),
         result.bvh.build_ms, result.bvh.node_count, result.bvh.sah_cost, (unsigned long long)done_spp, wall,
         samples / wall * 1e-6, double(result.rays) / wall * 1e-6, (unsigned long long)result.rays,
         (unsigned long long)result.nonfinite, accel_name(settings.accel), kernel_shapes_used(result.shares).c_str(),
         (unsigned long long)result.bytes_to_device, (unsigned long long)result.bytes_from_device,
         result.resumed_spp ? (" resumed_spp=" + std::to_string(result.resumed_spp)).c_str() : "",
-        result.stopped ? " interrupted=1" : "",
+        adaptive_summary.c_str(), result.stopped ? " interrupted=1" : "",
         denoiser && !result.stopped
             ? (" denoise_s=" + std::to_string(denoise_seconds) + " guides_s=" + std::to_string(guides.seconds)).c_str()
             : "");
@@ -392,6 +445,14 @@ Command add_render_command(CLI::App& app) {
     cmd->add_flag("--denoise", o->denoise,
                   "Also write each output denoised by Intel Open Image Denoise, beside it (out.png: "
                   "out.denoised.png), guided by albedo and normals passes; the estimate is unchanged");
+    cmd->add_option("--noise-target", o->noise_target,
+                    "Adaptive sampling: a pixel stops taking samples once its estimated error, |mean of all samples "
+                    "- mean of the odd ones| / sqrt(mean), is below this (Cycles' noise threshold, e.g. 0.01); the "
+                    "render ends when every pixel has, or at --spp or --time (default: the scene's, else off)")
+        ->check(real_number(0, 1, true));
+    cmd->add_option("--sample-count-image", o->sample_count_images,
+                    "Also write each pixel's sample count: .exr or .pfm (the count), .png (grey, white the most); "
+                    "repeatable");
     cmd->add_flag("--no-ground", o->no_ground, "A bare mesh (.obj, .gltf, .glb) gets no ground plane");
     cmd->add_option("--out,-o", o->outputs,
                     "Output image, .png (8-bit sRGB), .exr or .pfm (linear float); repeatable "
@@ -407,7 +468,7 @@ Command add_render_command(CLI::App& app) {
         ->check(real_number(0.001, 1e9));
     cmd->add_option("--checkpoint-file", o->checkpoint_file,
                     "Where checkpoints go (default: the first output + .checkpoint); its folder must exist");
-    cmd->add_option("--resume", o->resume, "Continue the render saved in this checkpoint (same scene, --spp, --chunk)");
+    cmd->add_option("--resume", o->resume, "Continue the render saved in this checkpoint (same scene, --spp, --chunk, --noise-target)");
     cmd->add_flag("--keep-checkpoint", o->keep_checkpoint,
                   "Keep the checkpoint (written, or resumed) after the render finishes (default: it is removed)");
     cmd->add_flag("--no-partial", o->no_partial,

@@ -158,6 +158,22 @@ void MpiJob::reduce_film(ExactFilm& film) {
     MPI_Type_free(&fixed);
 }
 
+void MpiJob::sum_films(ExactFilm& film) {
+    MPI_Datatype fixed;
+    check(MPI_Type_contiguous(int(sizeof(Fixed128)), MPI_BYTE, &fixed), "MPI_Type_contiguous");
+    MPI_Type_commit(&fixed);
+    MPI_Op op;
+    check(MPI_Op_create(&add_fixed128, 1, &op), "MPI_Op_create");
+    constexpr std::size_t kBlock = 1 << 20;
+    for (std::vector<Fixed128>* v : {&film.sums(), &film.half()})
+        for (std::size_t first = 0; first < v->size(); first += kBlock) {
+            const int n = int(std::min(kBlock, v->size() - first));
+            check(MPI_Allreduce(MPI_IN_PLACE, v->data() + first, n, fixed, op, MPI_COMM_WORLD), "MPI_Allreduce");
+        }
+    MPI_Op_free(&op);
+    MPI_Type_free(&fixed);
+}
+
 std::vector<DeviceShare> MpiJob::gather_shares(const std::vector<DeviceShare>& local) {
     struct Wire {
         char device[96];

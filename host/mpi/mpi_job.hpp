@@ -56,6 +56,7 @@ public:
     void run_chunks(ChunkQueue& lead_queue, DeviceFarm& farm, const std::function<void()>& poll) override;
 
     void reduce_film(ExactFilm& film) override;
+    void sum_films(ExactFilm& film) override;
     std::vector<std::string> gather_bytes(const std::string& mine) override;
     std::vector<DeviceShare> gather_shares(const std::vector<DeviceShare>& local) override;
 

@@ -1,7 +1,8 @@
 #pragma once
 // A render's running sums on disk, so that a long render can be stopped and
 // continued: the exact film (render/exact_film.hpp), the chunks it holds, and
-// what it is a render of. Continuing adds the missing chunks, and since chunk
+// what it is a render of (and, for an adaptive render, the half film and
+// each pixel's sample count, taken between passes). Continuing adds the missing chunks, and since chunk
 // totals add exactly, the final image is the same bits as an uninterrupted
 // render of the same seed and sample count.
 #include <cstdint>
@@ -24,7 +25,8 @@ struct Checkpoint {
     std::uint64_t render_hash = 0;  // scene and settings (render/render_hash.hpp)
     ChunkPlan plan;
     std::vector<std::uint64_t> done_chunks;
-    ExactFilm film;
+    ExactFilm film;           // with adaptive sampling, its half film and per-pixel counts too
+    double noise_target = 0;  // adaptive sampling's target; 0: none
 };
 
 // Written to a temporary file beside path and renamed over it, so a crash

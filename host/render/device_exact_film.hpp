@@ -18,14 +18,19 @@ namespace clpath {
 class DeviceExactFilm {
 public:
     // All zero. Throws clpath::Error when it does not fit on the device.
-    DeviceExactFilm(Context& ctx, int width, int height);
+    // with_half: it also keeps adaptive sampling's half film (the chunk
+    // films' w lanes, render/adaptive.hpp).
+    DeviceExactFilm(Context& ctx, int width, int height, bool with_half = false);
 
     // The buffers it needs on a device, by name (for Context::check_fits).
-    static std::vector<std::pair<std::string, std::size_t>> memory_needs(int width, int height);
+    static std::vector<std::pair<std::string, std::size_t>> memory_needs(int width, int height,
+                                                                        bool with_half = false);
 
     // Enqueues the addition of the chunk film's sums with the program's
     // film_add_exact kernel, which also empties the chunk film; nothing waits.
-    void add_chunk(Film& chunk, Kernel& add_exact, std::uint32_t samples);
+    // With a half film, add_exact_half (film_add_exact_half) adds the w lanes first.
+    void add_chunk(Film& chunk, Kernel& add_exact, std::uint32_t samples, Kernel* add_exact_half = nullptr);
+    bool has_half() const { return half_.get() != nullptr; }
     // The sums so far (a blocking read). Throws clpath::Error when a chunk
     // held a sum that is not finite or too large to hold exactly.
     ExactFilm read() const;
@@ -35,7 +40,7 @@ private:
     Context& ctx_;
     int width_, height_;
     std::uint64_t samples_ = 0;
-    Buffer sums_, error_;
+    Buffer sums_, error_, half_;
 };
 
 }  // namespace clpath

@@ -62,12 +62,42 @@ void DeviceFarm::run_device(std::size_t i, ChunkSource& source) {
         }
     };
     Renderer renderer = on_device([&] { return Renderer(ctx, *prepared_, settings_); });
-    DeviceExactFilm exact = on_device([&] { return DeviceExactFilm(ctx, scene_camera_.width, scene_camera_.height); });
+    DeviceExactFilm exact = on_device(
+        [&] { return DeviceExactFilm(ctx, scene_camera_.width, scene_camera_.height, pass_chunks_ > 0); });
     std::vector<std::uint64_t> done;
     std::chrono::steady_clock::time_point first{}, last{};
+    std::shared_ptr<const std::vector<std::uint8_t>> mask;  // the one the renderer has
     while (!cancel_) {
         const std::optional<Chunk> chunk = source.next();
         if (!chunk) break;
+        if (pass_chunks_) {
+            // A chunk of a pass not yet open waits for its mask, which needs
+            // every chunk of the pass before in the film.
+            const std::uint64_t pass = chunk->index / pass_chunks_;
+            std::shared_ptr<const std::vector<std::uint8_t>> pass_mask;
+            for (;;) {
+                {
+                    std::unique_lock<std::mutex> lock(mutex_);
+                    // Woken by open_pass, close_passes and a snapshot request (to answer it).
+                    pass_cv_.wait_for(lock, std::chrono::milliseconds(5), [&] {
+                        return cancel_ || passes_closed_ || (pass_opened_ && open_pass_ >= pass) ||
+                               (published_[i].has_chunks && published_[i].answered < snapshot_request_);
+                    });
+                    if (cancel_ || passes_closed_) break;
+                    if (pass_opened_ && open_pass_ >= pass) {
+                        if (open_pass_ != pass) throw Error("internal: a chunk of a pass already closed");
+                        pass_mask = pass_mask_;
+                        break;
+                    }
+                }
+                answer_snapshot(i, exact, done, false);
+            }
+            if (!pass_mask) break;  // the render ended: the chunk is dropped
+            if (pass_mask != mask) {
+                mask = pass_mask;
+                renderer.set_active_pixels(mask.get());
+            }
+        }
         if (first == std::chrono::steady_clock::time_point{}) first = std::chrono::steady_clock::now();
         // The film is empty (new, or emptied by the last add_chunk_to); its
         // sample count starts at the chunk's first sample index, so the
@@ -88,6 +118,7 @@ void DeviceFarm::run_device(std::size_t i, ChunkSource& source) {
         std::uint64_t spp;
         {
             std::lock_guard<std::mutex> lock(mutex_);
+            if (pass_chunks_) ++pass_done_[chunk->index / pass_chunks_];
             published_[i].has_chunks = true;
             DeviceShare& s = shares_[i];
             ++s.chunks;
@@ -105,6 +136,32 @@ void DeviceFarm::run_device(std::size_t i, ChunkSource& source) {
     shares_[i].nonfinite = stats.nonfinite;
     shares_[i].bytes_to_device = ctx.bytes_to_device();
     shares_[i].bytes_from_device = ctx.bytes_from_device();
+}
+
+void DeviceFarm::use_passes(std::uint64_t pass_chunks) {
+    if (!threads_.empty()) throw Error("internal: use_passes after start");
+    pass_chunks_ = pass_chunks;
+}
+
+void DeviceFarm::open_pass(std::uint64_t pass, std::shared_ptr<const std::vector<std::uint8_t>> mask) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (pass_opened_ && pass <= open_pass_) throw Error("internal: passes open in order");
+    open_pass_ = pass;
+    pass_opened_ = true;
+    pass_mask_ = std::move(mask);
+    pass_cv_.notify_all();
+}
+
+void DeviceFarm::close_passes() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    passes_closed_ = true;
+    pass_cv_.notify_all();
+}
+
+std::uint64_t DeviceFarm::chunks_done_in_pass(std::uint64_t pass) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = pass_done_.find(pass);
+    return it == pass_done_.end() ? 0 : it->second;
 }
 
 void DeviceFarm::answer_snapshot(std::size_t i, const DeviceExactFilm& film, const std::vector<std::uint64_t>& done,
@@ -135,6 +192,7 @@ void DeviceFarm::wait() {
 ExactFilm DeviceFarm::snapshot(std::vector<std::uint64_t>* done_chunks) const {
     std::unique_lock<std::mutex> lock(mutex_);
     const std::uint64_t request = ++snapshot_request_;
+    pass_cv_.notify_all();  // devices waiting for a pass answer at once
     // A device with no chunk yet has nothing to give; one whose thread ended
     // (finished, cancelled or failed) gave its final film.
     published_cv_.wait(lock, [&] {

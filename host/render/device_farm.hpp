@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -44,6 +45,19 @@ public:
     ~DeviceFarm();
     DeviceFarm(const DeviceFarm&) = delete;
     DeviceFarm& operator=(const DeviceFarm&) = delete;
+
+    // Adaptive sampling (render/adaptive.hpp), set before start(): chunks come
+    // in passes of pass_chunks, and a device that takes a chunk of pass q
+    // waits (answering snapshots) until open_pass(q) gives that pass's mask;
+    // the devices keep the half film.
+    void use_passes(std::uint64_t pass_chunks);
+    // The pass whose chunks may now be rendered, and its pixels (a mask as
+    // Renderer::set_active_pixels takes).
+    void open_pass(std::uint64_t pass, std::shared_ptr<const std::vector<std::uint8_t>> mask);
+    // No pass opens any more: a device waiting with a chunk drops it and ends.
+    void close_passes();
+    // Chunks of a pass added to the film so far.
+    std::uint64_t chunks_done_in_pass(std::uint64_t pass) const;
 
     // Starts one thread per device. on_chunk (optional) is called from the
     // device's thread after each chunk is added, with the film's sample count.
@@ -98,6 +112,13 @@ private:
     std::atomic<bool> cancel_{false};
     std::exception_ptr error_;
     std::function<void(std::uint64_t)> on_chunk_;
+    // Adaptive passes (0: none), the pass open and its mask, the chunks done per pass.
+    std::uint64_t pass_chunks_ = 0;
+    std::uint64_t open_pass_ = 0;
+    bool pass_opened_ = false, passes_closed_ = false;
+    std::shared_ptr<const std::vector<std::uint8_t>> pass_mask_;
+    std::map<std::uint64_t, std::uint64_t> pass_done_;
+    mutable std::condition_variable pass_cv_;
 };
 
 }  // namespace clpath

@@ -50,7 +50,17 @@ void ExactFilm::add(const ExactFilm& other) {
     if (other.width_ != width_ || other.height_ != height_)
         throw Error("internal: partial images of different sizes cannot be merged");
     for (std::size_t i = 0; i < sums_.size(); ++i) sums_[i] += other.sums_[i];
+    if (!other.half_.empty()) {
+        if (half_.empty()) half_.assign(other.half_.size(), 0);
+        for (std::size_t i = 0; i < half_.size(); ++i) half_[i] += other.half_[i];
+    }
     samples_ += other.samples_;
+}
+
+void ExactFilm::set_pixel_samples(std::vector<std::uint32_t> counts) {
+    if (!counts.empty() && counts.size() != std::size_t(width_) * std::size_t(height_))
+        throw Error("internal: per-pixel sample counts of another size than the film");
+    pixel_samples_ = std::move(counts);
 }
 
 Image ExactFilm::mean() const {
@@ -59,7 +69,14 @@ Image ExactFilm::mean() const {
     img.height = height_;
     img.rgb.resize(sums_.size());
     const double inv = samples_ ? 1.0 / double(samples_) : 0.0;
-    for (std::size_t i = 0; i < sums_.size(); ++i) img.rgb[i] = float(fixed_to_double(sums_[i]) * inv);
+    if (pixel_samples_.empty()) {
+        for (std::size_t i = 0; i < sums_.size(); ++i) img.rgb[i] = float(fixed_to_double(sums_[i]) * inv);
+        return img;
+    }
+    for (std::size_t p = 0; p < pixel_samples_.size(); ++p) {
+        const double inv_p = pixel_samples_[p] ? 1.0 / double(pixel_samples_[p]) : 0.0;
+        for (std::size_t c = 0; c < 3; ++c) img.rgb[p * 3 + c] = float(fixed_to_double(sums_[p * 3 + c]) * inv_p);
+    }
     return img;
 }
 

@@ -44,17 +44,33 @@ public:
     // Adds one chunk of `samples` samples per pixel: the device film's
     // compensated running sums (value = sum - comp), one AccumPixel a pixel.
     void add_chunk(const std::vector<AccumPixel>& film, std::uint32_t samples);
-    // Adds another partial total (from another device or rank).
+    // Adds another partial total (from another device or rank), half film included.
     void add(const ExactFilm& other);
     void set_samples_per_pixel(std::uint64_t spp) { samples_ = spp; }
 
-    // The mean radiance, each pixel's sum divided by the sample count.
+    // Adaptive sampling (render/adaptive.hpp). The half film: per pixel the
+    // sum of r+g+b over its odd-indexed samples; empty without adaptive sampling.
+    const std::vector<Fixed128>& half() const { return half_; }
+    std::vector<Fixed128>& half() { return half_; }
+    // Each pixel's own sample count, row 0 at the top; empty when every pixel
+    // holds samples_per_pixel() samples. Kept by the host (the kernels never
+    // count): the adaptive schedule decides it.
+    const std::vector<std::uint32_t>& pixel_samples() const { return pixel_samples_; }
+    void set_pixel_samples(std::vector<std::uint32_t> counts);
+    // A pixel's sample count, whichever way it is kept.
+    std::uint64_t samples_of(std::size_t pixel) const {
+        return pixel_samples_.empty() ? samples_ : pixel_samples_[pixel];
+    }
+
+    // The mean radiance, each pixel's sum divided by its sample count (0 where it has none).
     Image mean() const;
 
 private:
     int width_ = 0, height_ = 0;
     std::uint64_t samples_ = 0;
     std::vector<Fixed128> sums_;
+    std::vector<Fixed128> half_;
+    std::vector<std::uint32_t> pixel_samples_;
 };
 
 }  // namespace clpath

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "cl/embedded_sources.hpp"
+#include "cl/errors.hpp"
 #include "render/kernel_programs.hpp"
 #include "util/error.hpp"
 
@@ -69,6 +70,39 @@ void IntegratorProgram::compile() {
     }
     resolve_ = ctx_.kernel(program_.get(), "film_resolve");
     add_exact_ = ctx_.kernel(program_.get(), "film_add_exact");
+    add_exact_half_ = Kernel();
+    // The mask is the kernels' last parameter; kernels from before adaptive
+    // sampling (a render-ab variant) have none and render every pixel.
+    cl_uint args = 0;
+    cl_check(clGetKernelInfo((wavefront ? wf_.camera : render_).get(), CL_KERNEL_NUM_ARGS, sizeof args, &args, nullptr),
+             "clGetKernelInfo(CL_KERNEL_NUM_ARGS)");
+    kernels_take_mask_ = args == (wavefront ? 8u : DeviceScene::kArgCount + 4u);
+    if (adaptive_ && !kernels_take_mask_) throw Error("these kernels have no adaptive sampling");
+}
+
+Kernel& IntegratorProgram::add_exact_half_kernel() {
+    if (!add_exact_half_.get()) add_exact_half_ = ctx_.kernel(program_.get(), "film_add_exact_half");
+    return add_exact_half_;
+}
+
+void IntegratorProgram::set_active_pixels(const std::vector<std::uint8_t>* mask, std::uint32_t pixels) {
+    drain();  // a launch in flight reads the mask it was given
+    if (!mask) {
+        adaptive_ = false;
+        return;
+    }
+    if (!kernels_take_mask_) throw Error("these kernels have no adaptive sampling");
+    if (mask->size() != pixels) throw Error("internal: an active-pixel mask of another size than the film");
+    if (!active_.get() || active_.bytes() != mask->size())
+        active_ = ctx_.buffer(mask->size(), CL_MEM_READ_ONLY, "active pixels");
+    ctx_.write(active_, mask->data(), mask->size());
+    adaptive_ = true;
+}
+
+void IntegratorProgram::bind_mask(Kernel& k, cl_uint index) {
+    if (!kernels_take_mask_) return;
+    // Without a mask the kernels never read it; any buffer satisfies the parameter.
+    k.arg(index, adaptive_ ? active_ : counters_);
 }
 
 void IntegratorProgram::set_settings(const RenderSettings& settings) {
@@ -114,6 +148,7 @@ FrameParams IntegratorProgram::frame_params(const DeviceScene& scene, const Film
     fp.env_rot_sin = std::sin(sc.environment_rotation);
     fp.scene_flags = (sc.features.normals ? CLP_SCENE_NORMALS : 0u) | sc.surface_flags;
     fp.attr_stride = sc.attr_stride;
+    fp.adaptive = adaptive_ ? 1u : 0u;
     return fp;
 }
 
@@ -138,6 +173,7 @@ void IntegratorProgram::launch_band(const DeviceScene& scene, Film& film, const 
         render_.arg(DeviceScene::kArgCount, params_)
             .arg(DeviceScene::kArgCount + 1, film.accumulation_buffer())
             .arg(DeviceScene::kArgCount + 2, counters_);
+        bind_mask(render_, DeviceScene::kArgCount + 3);
         p.first_kernel = ctx_.launch(render_, pixel_count, kWorkGroup, true);
     }
     p.counters_read = ctx_.read_async(counters_, &p.counters, sizeof p.counters, true);
@@ -196,6 +232,8 @@ void IntegratorProgram::launch_waves(const DeviceScene& scene, Film& film, Pendi
         .arg(k + 5, counters_);
     wf_.next_bounce.arg(0, wf_.counts);
     wf_.accumulate.arg(0, params_).arg(2, wf_.paths).arg(3, cap).arg(4, film.accumulation_buffer()).arg(5, counters_);
+    bind_mask(wf_.camera, 7);
+    bind_mask(wf_.accumulate, 6);
     for (cl_uint first = 0; first < samples; first += per_wave) {
         const cl_uint n = std::min(per_wave, samples - first);
         const std::size_t paths = std::size_t(pixel_count) * n;
@@ -229,6 +267,7 @@ void IntegratorProgram::launch_waves(const DeviceScene& scene, Film& film, Pendi
             ctx_.launch(wf_.next_bounce, 1, 0);
         }
         wf_.accumulate.arg(1, n);
+        if (kernels_take_mask_) wf_.accumulate.arg(7, first);
         ctx_.launch(wf_.accumulate, pixel_count, kWorkGroup);
     }
 }

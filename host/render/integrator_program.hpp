@@ -5,6 +5,7 @@
 // sized to a time target and to the kernels' 32-bit counters.
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "cl/context.hpp"
 #include "cl/embedded_sources.hpp"
@@ -63,6 +64,16 @@ public:
     Kernel& resolve_kernel() { return resolve_; }
     // Its film_add_exact kernel, for DeviceExactFilm::add_chunk.
     Kernel& add_exact_kernel() { return add_exact_; }
+    // Its film_add_exact_half kernel (adaptive sampling's half film), made on first use.
+    Kernel& add_exact_half_kernel();
+
+    // Adaptive sampling (render/adaptive.hpp): from the next launch on, only
+    // the pixels whose byte is non-zero (one a pixel, row 0 at the top) take
+    // samples, and the film's w lanes gather the half film. nullptr: every
+    // pixel, w lanes untouched (the kernels' arithmetic is then exactly that of
+    // a render without adaptive sampling). Throws clpath::Error when the
+    // kernels (a variant's, bench render-ab) have no adaptive sampling.
+    void set_active_pixels(const std::vector<std::uint8_t>* mask, std::uint32_t pixels);
 
     const LaunchStats& stats() const { return stats_; }
     void reset_stats() { stats_ = LaunchStats{}; }
@@ -106,7 +117,13 @@ private:
     KernelVariant variant_;
     Buffer params_, counters_;
     Program program_;
-    Kernel render_, resolve_, add_exact_;
+    Kernel render_, resolve_, add_exact_, add_exact_half_;
+    // The active-pixel mask, and whether the kernels take one (a variant's
+    // kernels from before adaptive sampling do not).
+    Buffer active_;
+    bool adaptive_ = false, kernels_take_mask_ = true;
+    // Binds the mask (or, without one, a placeholder the kernels never read).
+    void bind_mask(Kernel& k, cl_uint index);
     WavefrontKernels wf_;
     LaunchStats stats_;
     double compile_seconds_ = 0;

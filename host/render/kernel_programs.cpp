@@ -125,7 +125,7 @@ ProgramSpec integrator_program(const KernelFeatures& features, KernelCode code) 
     p.name = std::string(integrator_name(features.integrator));
     p.roots = renderer_kernel_files();
     p.options = build_options(features) + code_options(code);
-    p.kernels = {"render_paths", "film_resolve", "film_add_exact"};
+    p.kernels = {"render_paths", "film_resolve", "film_add_exact", "film_add_exact_half"};
     return p;
 }
 
@@ -134,8 +134,9 @@ ProgramSpec wavefront_program(const KernelFeatures& features, KernelCode code) {
     p.name = std::string("wf-") + integrator_name(features.integrator);
     p.roots = wavefront_kernel_files();
     p.options = build_options(features) + code_options(code);
-    p.kernels = {"wf_camera",     "wf_trace",      "wf_shade",     "wf_light",      "wf_connect", "wf_scatter",
-                 "wf_shadow",     "wf_next_bounce", "wf_accumulate", "film_resolve", "film_add_exact"};
+    p.kernels = {"wf_camera",      "wf_trace",      "wf_shade",     "wf_light",       "wf_connect",
+                 "wf_scatter",     "wf_shadow",     "wf_next_bounce", "wf_accumulate", "film_resolve",
+                 "film_add_exact", "film_add_exact_half"};
     return p;
 }
 

@@ -35,10 +35,10 @@ struct ProgramSpec {
     std::string covers;                // what selects it (scenes, feature sets), for reports
 };
 
-// The renderer's program for these features (render_paths, film_resolve, film_add_exact).
+// The renderer's program for these features (render_paths, film_resolve, film_add_exact, film_add_exact_half).
 ProgramSpec integrator_program(const KernelFeatures& features, KernelCode code);
 // The wavefront integrator's program for these features (wavefront.cl: wf_*,
-// film_resolve, film_add_exact), for the integrators that have one.
+// film_resolve, film_add_exact, film_add_exact_half), for the integrators that have one.
 ProgramSpec wavefront_program(const KernelFeatures& features, KernelCode code);
 bool has_wavefront(std::uint32_t integrator);
 // The ray-batch benchmark's program (clpath bench rays).

@@ -37,6 +37,10 @@ public:
 
     // Sums every process's film into the lead's (the others' are left unchanged).
     virtual void reduce_film(ExactFilm& film) = 0;
+    // Sums every process's sums and half film (adaptive sampling) into every
+    // process's film, exactly: each process then holds the same film and
+    // takes the same decisions. Collective: every process calls it.
+    virtual void sum_films(ExactFilm& film) = 0;
     // Every process's device shares, on the lead (named "rank R (host): device").
     virtual std::vector<DeviceShare> gather_shares(const std::vector<DeviceShare>& local) = 0;
     // Every process's bytes, on the lead in rank order (empty elsewhere).

@@ -27,6 +27,13 @@ struct SessionOptions {
     double checkpoint_seconds = 0;    // 0: no checkpoints
     std::string checkpoint_path;      // where checkpoints go
     std::string resume_path;          // a checkpoint to continue from; empty: none
+    // Adaptive sampling (render/adaptive.hpp): > 0, pixels whose error
+    // estimate is below it stop taking samples, and the render ends when all
+    // have (or at spp or time_limit). Chunks are then of an even number of samples.
+    double noise_target = 0;
+    // For tests: replaces the decision rule (adaptive_active_pixels), e.g. with
+    // one known to be biased, to show that the agreement tests catch it.
+    std::function<std::vector<std::uint8_t>(const ExactFilm&, std::uint64_t min_samples)> adaptive_rule;
 };
 
 // All optional; called on the calling thread, but on_chunk.
@@ -47,11 +54,12 @@ struct SessionHooks {
 };
 
 struct SessionResult {
-    ExactFilm film;                   // on the lead (or alone): the whole image's sums
+    ExactFilm film;                   // on the lead (or alone): the whole image's sums (and, adaptive, per-pixel counts)
     std::vector<DeviceShare> shares;  // per device (on the lead, of every process)
     BvhStats bvh;
     bool stopped = false;             // stop_requested() ended it early
     std::uint64_t resumed_spp = 0;    // samples per pixel the resumed checkpoint held (0: not resumed)
+    bool converged = false;           // adaptive: every pixel reached the noise target
     double wall_seconds = 0;          // from the first chunk: compiles and uploads are not in it
     std::uint64_t rays = 0, nonfinite = 0;
     std::uint64_t bytes_to_device = 0, bytes_from_device = 0;  // every device's, scene uploads included

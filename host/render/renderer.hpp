@@ -61,7 +61,14 @@ public:
     // device and empties the film. Nothing is read back.
     void start_chunk(std::uint64_t first_sample) { film_->start_chunk_at(first_sample); }
     void add_chunk_to(DeviceExactFilm& exact, std::uint32_t samples) {
-        exact.add_chunk(*film_, program_->add_exact_kernel(), samples);
+        exact.add_chunk(*film_, program_->add_exact_kernel(), samples,
+                        exact.has_half() ? &program_->add_exact_half_kernel() : nullptr);
+    }
+    // Adaptive sampling (render/adaptive.hpp): only the pixels whose byte is
+    // non-zero take samples from now on, and the film gathers the half film
+    // (add chunks to a DeviceExactFilm made with one). nullptr: every pixel.
+    void set_active_pixels(const std::vector<std::uint8_t>* mask) {
+        program_->set_active_pixels(mask, film_->pixel_count());
     }
 
     // The mean, scaled by exposure, as linear float and 8-bit sRGB, read back.

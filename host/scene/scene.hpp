@@ -66,6 +66,7 @@ struct SceneRenderDefaults {
     std::string integrator = "path";              // see scene/render_names.hpp
     std::uint32_t seed = 0;
     float ao_distance = 0;                        // 0: a tenth of the scene's bounding-box diagonal
+    double noise_target = 0;                      // adaptive sampling's target (render/adaptive.hpp); 0: off
 };
 
 // A decoded texture image with the addressing its file asks for. 8-bit files

@@ -164,3 +164,19 @@ target_sources(progress_test PRIVATE ${CMAKE_SOURCE_DIR}/host/cli/progress.cpp)
 add_test(NAME cli.progress_lines_in_a_log
          COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/progress_log.sh $<TARGET_FILE:clpath> ${CLI_OUT}/progress)
 set_tests_properties(cli.progress_lines_in_a_log PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 300)
+
+# Adaptive sampling: a scene whose every pixel is exactly 1 (a mirror box in a
+# white environment) meets any noise target at the first decision past the
+# minimum (max(16, 4/sqrt(R)) samples, decisions every 32); the scene file's
+# render block gives the target and the command line overrides it.
+clpath_cli_test(adaptive_scene_file_target ARGS render ${CMAKE_CURRENT_SOURCE_DIR}/cli/data/adaptive-easy.json
+                -o ${CLI_OUT}/adaptive-easy.pfm --sample-count-image ${CLI_OUT}/adaptive-easy-n.pfm
+                OUTPUT "summary: .*spp=64 .*noise_target=0.01 spp_min=64 spp_max=64 spp_mean=64.00 converged=1")
+clpath_cli_test(adaptive_option_overrides_scene ARGS render ${CMAKE_CURRENT_SOURCE_DIR}/cli/data/adaptive-easy.json
+                --noise-target 0.2 -o ${CLI_OUT}/adaptive-easy-02.pfm
+                OUTPUT "noise_target=0.2 spp_min=32 spp_max=32 spp_mean=32.00 converged=1")
+clpath_cli_test(adaptive_target_zero FAIL ARGS render --noise-target 0 -o ${CLI_OUT}/adaptive-zero.pfm
+                OUTPUT "--noise-target: '0' is not a finite number above 0 and up to 1" FORBID ${CLI_OUT}/adaptive-zero.pfm)
+clpath_cli_test(adaptive_odd_chunk FAIL ARGS render --noise-target 0.1 --chunk 3 -o ${CLI_OUT}/adaptive-odd.pfm
+                OUTPUT "--noise-target: adaptive sampling needs chunks of an even number of samples \\(--chunk 3 is odd\\)"
+                FORBID ${CLI_OUT}/adaptive-odd.pfm)

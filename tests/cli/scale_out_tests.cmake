@@ -26,6 +26,22 @@ clpath_same_image_test(two_devices_same_bits
     "${C} ${SMALL_ARGS} --device 0 -o ${SCALE_OUT}/one.pfm|${C} ${SMALL_ARGS} --device all -o ${SCALE_OUT}/all.pfm|${C} ${SMALL_ARGS} --device 1,0 -o ${SCALE_OUT}/list.pfm"
     "${SCALE_OUT}/one.pfm;${SCALE_OUT}/all.pfm;${SCALE_OUT}/list.pfm" "${TWO_POCL_DEVICES}")
 
+# Adaptive sampling decides between passes from the exact film, so the pixels
+# that stop, their counts and the image are the same over two devices as on
+# one, in both kernel shapes.
+set(ADAPTIVE render --spp 256 --chunk 4 --width 40 --height 32 --seed 9 -q --noise-target 0.1)
+string(REPLACE ";" " " ADAPTIVE_ARGS "${ADAPTIVE}")
+foreach(shape mega wavefront)
+    set(A "${C} ${ADAPTIVE_ARGS} --kernel ${shape}")
+    set(D ${SCALE_OUT}/adaptive-${shape})
+    clpath_same_image_test(adaptive_${shape}_two_devices_same_bits
+        "${A} --device 0 -o ${D}-one.pfm|${A} --device all -o ${D}-all.pfm|${A} --device 1,0 -o ${D}-list.pfm"
+        "${D}-one.pfm;${D}-all.pfm;${D}-list.pfm" "${TWO_POCL_DEVICES}")
+    clpath_same_image_test(adaptive_${shape}_two_devices_same_counts
+        "${A} --device 0 -o ${D}-c1.pfm --sample-count-image ${D}-n1.pfm|${A} --device all -o ${D}-c2.pfm --sample-count-image ${D}-n2.pfm"
+        "${D}-n1.pfm;${D}-n2.pfm" "${TWO_POCL_DEVICES}")
+endforeach()
+
 clpath_cli_test(scale_device_twice FAIL ARGS render --spp 1 --device 0,0 -o ${SCALE_OUT}/twice.pfm
                 OUTPUT "device \\[0\\].*named twice" FORBID ${SCALE_OUT}/twice.pfm)
 clpath_cli_test(scale_device_missing_in_list FAIL ARGS render --spp 1 --device 0,9 -o ${SCALE_OUT}/missing.pfm
@@ -62,6 +78,19 @@ if(CLPATH_WITH_MPI)
     clpath_command_test(mpi_rank_dies FAIL OUTPUT "exited on signal 9" FORBID ${SCALE_OUT}/dies.pfm
         CMD ${MPIRUN} -n 1 ${C} render --spp 100000 --width 40 --height 32 -q -o ${SCALE_OUT}/dies.pfm
             : -n 1 ${CMAKE_CURRENT_SOURCE_DIR}/cli/dying_rank.sh)
+    # Adaptive sampling over ranks: each takes a fixed share of every pass's
+    # chunks and the ranks add their films at each boundary, so two ranks give
+    # one process's image and sample counts, bit for bit.
+    clpath_same_image_test(mpi_two_ranks_adaptive_same_bits
+        "${C} ${ADAPTIVE_ARGS} -o ${SCALE_OUT}/adaptive-rank1.pfm --sample-count-image ${SCALE_OUT}/adaptive-rank1-n.pfm|${MPIRUN_ARGS} -n 2 ${C} ${ADAPTIVE_ARGS} -o ${SCALE_OUT}/adaptive-ranks2.pfm --sample-count-image ${SCALE_OUT}/adaptive-ranks2-n.pfm"
+        "${SCALE_OUT}/adaptive-rank1.pfm;${SCALE_OUT}/adaptive-ranks2.pfm" "")
+    clpath_same_image_test(mpi_two_ranks_adaptive_same_counts
+        "${C} ${ADAPTIVE_ARGS} -o ${SCALE_OUT}/adaptive-rank1b.pfm --sample-count-image ${SCALE_OUT}/adaptive-rank1b-n.pfm|${MPIRUN_ARGS} -n 2 ${C} ${ADAPTIVE_ARGS} -o ${SCALE_OUT}/adaptive-ranks2b.pfm --sample-count-image ${SCALE_OUT}/adaptive-ranks2b-n.pfm"
+        "${SCALE_OUT}/adaptive-rank1b-n.pfm;${SCALE_OUT}/adaptive-ranks2b-n.pfm" "")
+    # With a time budget the ranks could end at different chunks of a pass: refused, clearly.
+    clpath_command_test(mpi_noise_target_time_refused FAIL OUTPUT "--noise-target over MPI ranks needs --spp and no --time"
+        FORBID ${SCALE_OUT}/adaptive-ranks-time.pfm
+        CMD ${MPIRUN} -n 2 ${C} ${SMALL} --time 5 --noise-target 0.1 -o ${SCALE_OUT}/adaptive-ranks-time.pfm)
     # A convergence study over ranks: every configuration is measured once and reported by rank 0.
     clpath_command_test(mpi_bench_convergence
         OUTPUT "spread over 2 MPI ranks.*\\| thesis .*\\| cosine .*\\| no-rr .*\\| throughput-rr .*\\| nee-mis .*\\| bvh .*\\| clpath "

@@ -30,7 +30,7 @@
     F(FrameParams, pixel_count) F(FrameParams, light_count) F(FrameParams, env_light) F(FrameParams, ao_distance) \
     F(FrameParams, depth_scale) F(FrameParams, env_color) F(FrameParams, env_width) F(FrameParams, env_scale) \
     F(FrameParams, env_rot_cos) F(FrameParams, env_rot_sin) F(FrameParams, env_height) F(FrameParams, scene_flags) \
-    F(FrameParams, attr_stride) F(FrameParams, pad1) F(FrameParams, pad2) F(FrameParams, pad3) \
+    F(FrameParams, attr_stride) F(FrameParams, adaptive) F(FrameParams, pad2) F(FrameParams, pad3) \
     F(Counters, rays) F(Counters, nonfinite) F(Counters, pad0) F(Counters, pad1) \
     F(AccumPixel, sum) F(AccumPixel, comp) \
     F(BatchRay, o) F(BatchRay, tmax) F(BatchRay, d) F(BatchRay, src) \

@@ -44,6 +44,25 @@ TEST(Checkpoint, RoundTripsExactly) {
     std::filesystem::remove(path);
 }
 
+TEST(Checkpoint, AdaptiveRoundTripsWithHalfFilmAndCounts) {
+    const std::string path = temp_path("adaptive");
+    Checkpoint c = sample_checkpoint();
+    c.noise_target = 0.02;
+    c.film.half() = {Fixed128(1) << 80, -7, 3, 0, 99, Fixed128(5) << 64};
+    c.film.set_pixel_samples({24, 8, 16, 24, 8, 8});
+    write_checkpoint(path, c);
+    const Checkpoint r = read_checkpoint(path);
+    EXPECT_EQ(r.noise_target, 0.02);
+    EXPECT_EQ(r.film.sums(), c.film.sums());
+    EXPECT_EQ(r.film.half(), c.film.half());
+    EXPECT_EQ(r.film.pixel_samples(), c.film.pixel_samples());
+    // A count above the chunks' total is refused.
+    c.film.set_pixel_samples({25, 8, 16, 24, 8, 8});
+    write_checkpoint(path, c);
+    EXPECT_THROW(read_checkpoint(path), Error);
+    std::filesystem::remove(path);
+}
+
 TEST(Checkpoint, RefusesBrokenFiles) {
     const std::string path = temp_path("broken");
     write_checkpoint(path, sample_checkpoint());

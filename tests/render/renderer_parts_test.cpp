@@ -171,7 +171,7 @@ TEST(DeviceScene, KernelParametersFollowTheSceneBufferTable) {
     cl_uint args = 0;
     ASSERT_EQ(clGetKernelInfo(k.get(), CL_KERNEL_NUM_ARGS, sizeof args, &args, nullptr), CL_SUCCESS);
     std::vector<std::string> names = scene_buffer_names();
-    names.insert(names.end(), {"fp", "accum", "counters"});
+    names.insert(names.end(), {"fp", "accum", "counters", "active"});
     ASSERT_EQ(args, names.size());
     for (cl_uint i = 0; i < args; ++i) {
         char name[64] = {};

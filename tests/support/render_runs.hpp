@@ -2,11 +2,15 @@
 // Independent runs of one scene for the statistical tests, and the scene
 // placed elsewhere (moved, scaled) for the scale-invariance tests.
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "image/image.hpp"
+#include "render/render_session.hpp"
 #include "render/renderer.hpp"
 #include "scene/scene.hpp"
 #include "support/test_device.hpp"
@@ -15,9 +19,33 @@ namespace clpath::test {
 
 // K renders with seeds seed0, seed0 + 1, ..., from one Renderer (kernels and
 // BVH built once); the non-finite samples of all runs are added to *nonfinite.
+// With CLPATH_TEST_NOISE_TARGET=R in the environment (the adaptive.* reruns
+// of the agreement tests, tests/CMakeLists.txt), each run is an adaptive
+// render to the noise target R of at most 4 x spp samples (render_session on
+// the test device; 4 x so that pixels can stop before the cap, the tests'
+// counts being as low as 16), so the agreement tests check that adaptive
+// sampling leaves the estimate unbiased. The share of samples it saved is
+// printed, to show that pixels did stop.
 inline std::vector<Image> render_runs(const Scene& scene, RenderSettings st, std::uint32_t spp, int k,
                                       std::uint32_t seed0, std::uint64_t* nonfinite = nullptr) {
     std::vector<Image> out;
+    if (const char* target = std::getenv("CLPATH_TEST_NOISE_TARGET"); target && *target) {
+        SessionOptions so;
+        so.spp = 4ull * spp;
+        so.noise_target = std::stod(target);
+        double taken = 0, cap = 0;
+        for (int i = 0; i < k; ++i) {
+            st.seed = seed0 + std::uint32_t(i);
+            const SessionResult r = render_session(scene, st, {device().device()}, so);
+            if (nonfinite) *nonfinite += r.nonfinite;
+            for (std::size_t p = 0; p < r.film.pixel_samples().size(); ++p) taken += double(r.film.samples_of(p));
+            cap += double(so.spp) * double(r.film.pixel_samples().size());
+            out.push_back(r.film.mean());
+        }
+        std::fprintf(stderr, "[ adaptive ] noise target %s: %.1f%% of the %llu-spp cap taken\n", target,
+                     100.0 * taken / cap, (unsigned long long)so.spp);
+        return out;
+    }
     Renderer r(device(), scene, st);
     for (int i = 0; i < k; ++i) {
         st.seed = seed0 + std::uint32_t(i);

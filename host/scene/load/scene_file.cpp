@@ -79,6 +79,10 @@ void read_render(Object o, SceneRenderDefaults& r) {
     if (auto v = o.get("max_depth")) r.max_depth = std::uint32_t(v->integer(0, 1024));
     if (auto v = o.get("seed")) r.seed = std::uint32_t(v->integer(0, 0xffffffffll));
     if (auto v = o.get("ao_distance")) r.ao_distance = v->real(jsonf::kNonNegative);
+    if (auto v = o.get("noise_target")) {
+        r.noise_target = v->real(jsonf::kPositive);
+        if (r.noise_target > 1) v->fail("a noise target is at most 1");
+    }
     // The names are the command line's; scene/render_names.cpp owns the lists.
     auto name = [](const Value& v, auto parse) {
         const std::string s = v.string();
