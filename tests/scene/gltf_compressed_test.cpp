@@ -4,6 +4,7 @@
 // attributes and meshopt's octahedral filter. Broken or hostile compressed
 // data is refused with the file and the glTF path, never a crash.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
