@@ -161,6 +161,32 @@ TEST(GltfCompressed, DracoWithinItsQuantisationStep) {
     }
 }
 
+// The accessors say what the decoded values become: normals as 16-bit snorm,
+// texture coordinates as 16-bit unorm (KHR_mesh_quantization), each rounded
+// to the nearest step: within half a step of 1/32767 or 1/65535 (after
+// Draco's 12-bit quantisation of the coordinates).
+TEST(GltfCompressed, DracoValuesTakeTheirAccessorsComponentType) {
+    const TestMesh mesh = bumpy_grid(12, false);
+    const GltfModel plain = load("plain.gltf", plain_file(mesh).gltf());
+    TestFile f = draco_file(mesh);
+    const json& attrs = f.doc["meshes"][0]["primitives"][0]["attributes"];
+    f.doc["accessors"][attrs["NORMAL"].get<int>()]["componentType"] = kGltfShort;
+    f.doc["accessors"][attrs["NORMAL"].get<int>()]["normalized"] = true;
+    f.doc["accessors"][attrs["TEXCOORD_0"].get<int>()]["componentType"] = 5123;
+    f.doc["accessors"][attrs["TEXCOORD_0"].get<int>()]["normalized"] = true;
+    f.require("KHR_mesh_quantization");
+    const Differences d = differences(only_primitive(plain), only_primitive(load("q.glb", f.glb())));
+    const float ulp4 = 4 * std::numeric_limits<float>::epsilon();
+    EXPECT_LE(d.nrm, 0.5f / 32767 + ulp4);
+    EXPECT_GT(d.nrm, 0.0f);  // control: they did go through 16 bits
+    EXPECT_LE(d.uv, 0.5f / 4095 + 0.5f / 65535 + ulp4);
+    // A value the component type cannot hold is an error naming the attribute.
+    f.doc["accessors"][attrs["NORMAL"].get<int>()]["componentType"] = 5123;  // unsigned: no negative components
+    const std::string e = load_error("q.glb", f.glb());
+    EXPECT_TRUE(has(e, "q.glb: meshes[0].primitives[0].extensions.KHR_draco_mesh_compression.attributes.NORMAL: a "
+                       "decoded value does not fit accessors[1]'s component type 5123 (normalized)")) << e;
+}
+
 // On the grid Draco quantises to (whole numbers, range 2^11 - 1, 11 bits) it is exact.
 TEST(GltfCompressed, DracoOnItsGridIsExact) {
     const TestMesh mesh = bumpy_grid(12, true);

@@ -6,6 +6,10 @@
 // `normalized` (as Babylon.js does by default), so that the rest of the
 // loader reads it as it reads an uncompressed accessor, KHR_mesh_quantization
 // included.
+#include <cmath>
+#include <limits>
+#include <type_traits>
+
 #include <draco/compression/decode.h>
 #include <nlohmann/json.hpp>
 
@@ -19,9 +23,26 @@ constexpr const char* kExtension = "KHR_draco_mesh_compression";
 template <class T>
 bool convert_all(const draco::PointAttribute& att, std::size_t points, int components, unsigned char* out) {
     T* o = reinterpret_cast<T*>(out);
+    const std::size_t n = std::size_t(components);
+    // Dequantised floats into a normalized integer accessor: Draco converts to
+    // unsigned ones only; glTF's signed ones map [-1, 1] by the largest value
+    // (KHR_mesh_quantization, as View::floats reads them back).
+    if constexpr (std::is_integral_v<T>)
+        if (att.normalized() && (att.data_type() == draco::DT_FLOAT32 || att.data_type() == draco::DT_FLOAT64)) {
+            float v[4];
+            const float lo = std::is_signed_v<T> ? -1.0f : 0.0f, top = float(std::numeric_limits<T>::max());
+            for (std::size_t i = 0; i < points; ++i) {
+                if (!att.ConvertValue<float>(att.mapped_index(draco::PointIndex(std::uint32_t(i))), std::int8_t(components), v))
+                    return false;
+                for (std::size_t c = 0; c < n; ++c) {
+                    if (!(v[c] >= lo && v[c] <= 1.0f)) return false;  // NaN too
+                    o[i * n + c] = T(std::lround(v[c] * top));
+                }
+            }
+            return true;
+        }
     for (std::size_t i = 0; i < points; ++i)
-        if (!att.ConvertValue<T>(att.mapped_index(draco::PointIndex(std::uint32_t(i))), std::int8_t(components),
-                                 o + i * std::size_t(components)))
+        if (!att.ConvertValue<T>(att.mapped_index(draco::PointIndex(std::uint32_t(i))), std::int8_t(components), o + i * n))
             return false;
     return true;
 }
