@@ -26,6 +26,8 @@ fi
 # Debian's libclc-15 would replace libclc-14, so libclc 14's bitcode serves
 # both). NVIDIA's ptxas comes with the CUDA toolkit, not Debian: where
 # /usr/local/cuda/bin/ptxas is missing the gate skips sm_90 and says so.
+# libdraco-dev, libmeshoptimizer-dev: the decoders of Draco- and
+# meshopt-compressed glTF meshes (KHR_draco_mesh_compression, EXT_meshopt_compression).
 # python3-venv: the virtual environment that holds Open Image Denoise (below).
 packages="
     build-essential cmake pkg-config clang libclang-rt-14-dev
@@ -33,6 +35,7 @@ packages="
     pocl-opencl-icd ocl-icd-opencl-dev opencl-headers clinfo oclgrind
     libglm-dev libglfw3-dev libopenimageio-dev openimageio-tools
     libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libgtest-dev libxxhash-dev
+    libdraco-dev libmeshoptimizer-dev
     xvfb xauth libimgui-dev glmark2-data
     python3-numpy python3-matplotlib python3-venv
     libembree-dev embree-tools

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <type_traits>
 
@@ -11,7 +12,6 @@ void Source::fail(const std::string& path, const std::string& what) const {
     throw Error(file + ": " + path + ": " + what);
 }
 
-namespace {
 int component_size(int type) {
     switch (type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
@@ -35,6 +35,34 @@ int type_components(int type) {
     }
 }
 
+std::int64_t whole_field(const Source& src, const tinygltf::Value& o, const char* key, const std::string& path,
+                         std::int64_t lo, std::int64_t hi, std::optional<std::int64_t> absent) {
+    const std::string at = path + "." + key;
+    if (!o.Has(key)) {
+        if (absent) return *absent;
+        src.fail(at, "required, but missing");
+    }
+    const tinygltf::Value& v = o.Get(key);
+    const double d = v.IsNumber() ? v.GetNumberAsDouble() : NAN;
+    if (!std::isfinite(d) || std::floor(d) != d) src.fail(at, "expected a whole number");
+    // Compared as doubles: a value past int64's range must not be converted first.
+    if (d < double(lo) || d > double(hi))
+        src.fail(at, std::to_string(std::int64_t(std::clamp(d, -9e18, 9e18))) + " is out of range (must be from " +
+                         std::to_string(lo) + " to " + std::to_string(hi) + ")");
+    return std::int64_t(d);
+}
+
+std::string string_field(const Source& src, const tinygltf::Value& o, const char* key, const std::string& path,
+                         std::optional<std::string> absent) {
+    if (!o.Has(key)) {
+        if (absent) return *absent;
+        src.fail(path + "." + key, "required, but missing");
+    }
+    if (!o.Get(key).IsString()) src.fail(path + "." + key, "expected a string");
+    return o.Get(key).Get<std::string>();
+}
+
+namespace {
 std::string type_name(int type) {
     switch (type) {
     case TINYGLTF_TYPE_SCALAR: return "SCALAR";
@@ -125,6 +153,27 @@ std::vector<std::uint32_t> View::indices() const {
     return out;
 }
 
+Bytes buffer_view_bytes(const Source& src, int index, const std::string& referrer) {
+    const auto& m = src.model;
+    if (index < 0 || std::size_t(index) >= m.bufferViews.size())
+        src.fail(referrer, "bufferView " + std::to_string(index) + " does not exist (the file has " +
+                               std::to_string(m.bufferViews.size()) + ")");
+    const tinygltf::BufferView& bv = m.bufferViews[std::size_t(index)];
+    if (const std::vector<unsigned char>* decoded = meshopt_view(src, index)) return {decoded->data(), decoded->size()};
+    const std::string bv_path = "bufferViews[" + std::to_string(index) + "]";
+    if (bv.buffer < 0 || std::size_t(bv.buffer) >= m.buffers.size())
+        src.fail(bv_path, "buffer " + std::to_string(bv.buffer) + " does not exist");
+    const std::string b_path = "buffers[" + std::to_string(bv.buffer) + "]";
+    if (is_fallback_buffer(m.buffers[std::size_t(bv.buffer)]))
+        src.fail(bv_path, b_path + " is an EXT_meshopt_compression fallback buffer, which holds no data: only "
+                                   "compressed views may name it");
+    const auto& data = m.buffers[std::size_t(bv.buffer)].data;
+    if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
+        src.fail(bv_path, "bytes " + std::to_string(bv.byteOffset) + " + " + std::to_string(bv.byteLength) +
+                              " run past the end of " + b_path + " (" + std::to_string(data.size()) + " bytes)");
+    return {data.data() + bv.byteOffset, bv.byteLength};
+}
+
 View view(const Source& src, int index, const std::string& path, int type, int alt_type,
           const std::vector<int>& allowed, bool integers, bool plain_integers) {
     const auto& m = src.model;
@@ -159,22 +208,16 @@ View view(const Source& src, int index, const std::string& path, int type, int a
                             std::to_string(m.bufferViews.size()) + ")");
     const tinygltf::BufferView& bv = m.bufferViews[std::size_t(a.bufferView)];
     const std::string bv_path = "bufferViews[" + std::to_string(a.bufferView) + "]";
-    if (bv.buffer < 0 || std::size_t(bv.buffer) >= m.buffers.size())
-        src.fail(bv_path, "buffer " + std::to_string(bv.buffer) + " does not exist");
-    const auto& data = m.buffers[std::size_t(bv.buffer)].data;
-    if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
-        src.fail(bv_path, "bytes " + std::to_string(bv.byteOffset) + " + " + std::to_string(bv.byteLength) +
-                              " run past the end of buffers[" + std::to_string(bv.buffer) + "] (" +
-                              std::to_string(data.size()) + " bytes)");
+    const Bytes bytes = buffer_view_bytes(src, a.bufferView, where);
     v.stride = bv.byteStride ? bv.byteStride : elem;
     if (v.stride < elem) src.fail(bv_path, "byteStride " + std::to_string(v.stride) + " is less than an element");
     if (a.count > 0) {
         const std::size_t need = a.byteOffset + (a.count - 1) * v.stride + elem;  // bounded: count <= max_count
-        if (a.byteOffset > bv.byteLength || need > bv.byteLength)
+        if (a.byteOffset > bytes.size || need > bytes.size)
             src.fail(where, std::to_string(a.count) + " elements from byte " + std::to_string(a.byteOffset) +
-                                " run past the end of " + bv_path + " (" + std::to_string(bv.byteLength) + " bytes)");
+                                " run past the end of " + bv_path + " (" + std::to_string(bytes.size) + " bytes)");
     }
-    v.data = data.data() + bv.byteOffset + a.byteOffset;
+    v.data = bytes.data + a.byteOffset;
     return v;
 }
 

@@ -57,16 +57,16 @@ glm::mat4 node_matrix(const tinygltf::Node& n) {
 // Corner indices of the primitive's triangles (strips and fans converted as
 // the specification's section 3.7.2.1 lists).
 std::vector<std::uint32_t> triangle_corners(const Source& src, const tinygltf::Primitive& p, const std::string& path,
-                                            std::size_t vertex_count) {
+                                            std::size_t vertex_count, const std::optional<gltf::DracoPrimitive>& draco) {
     std::vector<std::uint32_t> idx;
-    if (p.indices >= 0) {
-        const View v = gltf::view(src, p.indices, path + ".indices", TINYGLTF_TYPE_SCALAR, -1, {kUByte, kUShort, kUInt}, true);
-        idx = v.indices();
+    if (draco || p.indices >= 0) {
+        const std::string where = draco ? path + ".extensions.KHR_draco_mesh_compression" : path + ".indices";
+        if (draco) idx = draco->corners;  // Draco's faces
+        else idx = gltf::view(src, p.indices, where, TINYGLTF_TYPE_SCALAR, -1, {kUByte, kUShort, kUInt}, true).indices();
         const auto bad = std::find_if(idx.begin(), idx.end(), [&](std::uint32_t i) { return i >= vertex_count; });
         if (bad != idx.end())
-            src.fail(path + ".indices", "index " + std::to_string(*bad) + " at position " +
-                                            std::to_string(bad - idx.begin()) + " is out of range (the primitive has " +
-                                            std::to_string(vertex_count) + " vertices)");
+            src.fail(where, "index " + std::to_string(*bad) + " at position " + std::to_string(bad - idx.begin()) +
+                                " is out of range (the primitive has " + std::to_string(vertex_count) + " vertices)");
     } else {
         idx.resize(vertex_count);
         for (std::size_t i = 0; i < vertex_count; ++i) idx[i] = std::uint32_t(i);
@@ -115,9 +115,16 @@ GltfPrimitive read_primitive(const Source& src, const tinygltf::Primitive& p, co
     const std::string ap = path + ".attributes.";
     const int pos_i = attr("POSITION");
     if (pos_i < 0) src.fail(ap + "POSITION", "a primitive needs positions");
+    // KHR_draco_mesh_compression: the attributes it holds, and the triangles, come from its data.
+    const std::optional<gltf::DracoPrimitive> draco = gltf::decode_draco(src, p, path);
+    const auto view = [&](int i, const char* name, int type, int alt_type, const std::vector<int>& allowed,
+                          bool plain_integers = false) {
+        View v = gltf::view(src, i, ap + name, type, alt_type, allowed, false, plain_integers);
+        if (draco) gltf::use_draco(*draco, name, v);
+        return v;
+    };
     // The component types are KHR_mesh_quantization's (a superset of the core's).
-    const View pos = gltf::view(src, pos_i, ap + "POSITION", TINYGLTF_TYPE_VEC3, -1, {kFloat, kByte, kUByte, kShort, kUShort},
-                                false, true);
+    const View pos = view(pos_i, "POSITION", TINYGLTF_TYPE_VEC3, -1, {kFloat, kByte, kUByte, kShort, kUShort}, true);
     const std::size_t n = pos.count;
     auto same_count = [&](const View& v) {
         if (v.count != n)
@@ -126,24 +133,23 @@ GltfPrimitive read_primitive(const Source& src, const tinygltf::Primitive& p, co
     };
     std::optional<View> nrm, tan, uv, col;
     if (int i = attr("NORMAL"); i >= 0)
-        nrm = same_count(gltf::view(src, i, ap + "NORMAL", TINYGLTF_TYPE_VEC3, -1, {kFloat, kByte, kShort}));
+        nrm = same_count(view(i, "NORMAL", TINYGLTF_TYPE_VEC3, -1, {kFloat, kByte, kShort}));
     if (int i = attr("TANGENT"); i >= 0)
-        tan = same_count(gltf::view(src, i, ap + "TANGENT", TINYGLTF_TYPE_VEC4, -1, {kFloat, kByte, kShort}));
+        tan = same_count(view(i, "TANGENT", TINYGLTF_TYPE_VEC4, -1, {kFloat, kByte, kShort}));
     if (int i = attr("TEXCOORD_0"); i >= 0)
-        uv = same_count(gltf::view(src, i, ap + "TEXCOORD_0", TINYGLTF_TYPE_VEC2, -1, {kFloat, kByte, kUByte, kShort, kUShort},
-                                   false, true));
+        uv = same_count(view(i, "TEXCOORD_0", TINYGLTF_TYPE_VEC2, -1, {kFloat, kByte, kUByte, kShort, kUShort}, true));
     if (int i = attr("COLOR_0"); i >= 0)
-        col = same_count(gltf::view(src, i, ap + "COLOR_0", TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4, {kFloat, kUByte, kUShort}));
+        col = same_count(view(i, "COLOR_0", TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4, {kFloat, kUByte, kUShort}));
     if (p.material >= 0 && std::size_t(p.material) >= src.model.materials.size())
         src.fail(path + ".material", "material " + std::to_string(p.material) + " does not exist (the file has " +
                                          std::to_string(src.model.materials.size()) + ")");
     out.material = p.material;
 
-    const std::vector<std::uint32_t> corners = triangle_corners(src, p, path, n);
+    const std::vector<std::uint32_t> corners = triangle_corners(src, p, path, n, draco);
     if (p.mode >= TINYGLTF_MODE_POINTS && p.mode <= TINYGLTF_MODE_LINE_STRIP)
         out.warning = gltf::points_and_lines_warning(src.file, path);
     if (p.mode < 0 || p.mode == TINYGLTF_MODE_TRIANGLES) {
-        const std::size_t listed = p.indices >= 0 ? src.model.accessors[std::size_t(p.indices)].count : n;
+        const std::size_t listed = draco ? corners.size() : p.indices >= 0 ? src.model.accessors[std::size_t(p.indices)].count : n;
         if (listed % 3) out.warning = gltf::incomplete_triangle_warning(src.file, path, listed);
     }
     // Each attribute decoded once per vertex, then gathered per corner.
@@ -260,8 +266,13 @@ GltfModel read_gltf(const std::string& bytes, const std::string& file, const Loa
             if (auto w = gltf::rest_pose_warning(doc, file); !w.empty()) out.warnings.push_back(w);
             // Skins are not animated here, so they are dropped before tinygltf,
             // which refuses one without inverseBindMatrices (optional in the
-            // specification); the meshes stay in their rest pose.
-            if (gltf::drop_skins(doc)) {
+            // specification); the meshes stay in their rest pose. Meshopt's
+            // fallback buffers, which hold no data, get a stand-in; Draco's
+            // primitives take their triangles from the Draco data.
+            bool changed = gltf::drop_skins(doc);
+            changed = gltf::stand_in_fallback_buffers(doc, binary, data_uris) || changed;
+            changed = gltf::drop_draco_indices(doc) || changed;
+            if (changed) {
                 rewritten = doc.dump();
                 if (binary) rewritten = gltf::glb_with_json(bytes, rewritten);
             }

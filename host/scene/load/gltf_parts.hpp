@@ -2,6 +2,9 @@
 // The parts of the glTF loader (gltf_model.hpp), shared between its files:
 // checked accessor reads and the material and texture conversion.
 #include <cstddef>
+#include <cstdint>
+#include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,7 +24,33 @@ struct Source {
     const LoadOptions& options;
     // Throws clpath::Error "FILE: PATH: what".
     [[noreturn]] void fail(const std::string& path, const std::string& what) const;
+    // EXT_meshopt_compression buffer views, decoded when an accessor first
+    // reads them (meshopt_view), by bufferView index.
+    mutable std::map<int, std::vector<unsigned char>> meshopt_views{};
 };
+
+// Bytes per component of a TINYGLTF_COMPONENT_TYPE_*, components per
+// TINYGLTF_TYPE_* (0 for others).
+int component_size(int component_type);
+int type_components(int type);
+
+// o[key] of an extension object (tinygltf keeps extensions as generic
+// values): a whole number in [lo, hi], else src.fail naming path.key; when
+// absent, `absent` if given, else "required, but missing".
+std::int64_t whole_field(const Source& src, const tinygltf::Value& o, const char* key, const std::string& path,
+                         std::int64_t lo, std::int64_t hi, std::optional<std::int64_t> absent = std::nullopt);
+// o[key]: a string, required unless `absent` is given (returned when absent).
+std::string string_field(const Source& src, const tinygltf::Value& o, const char* key, const std::string& path,
+                         std::optional<std::string> absent = std::nullopt);
+
+// The bytes of bufferViews[index], bounds-checked against its buffer, or
+// decoded when the view is EXT_meshopt_compression-compressed; `referrer`
+// is the glTF path that names the view, for messages.
+struct Bytes {
+    const unsigned char* data = nullptr;
+    std::size_t size = 0;
+};
+Bytes buffer_view_bytes(const Source& src, int index, const std::string& referrer);
 
 // An accessor's elements, bounds-checked against its buffer view and buffer.
 // data is null for an accessor without a buffer view (all zeros, as the
@@ -90,6 +119,41 @@ std::string uri_path(const std::string& file, const std::string& uri);
 // missing image is a warning (returned): its textures are left out.
 std::vector<std::string> check_uris(const nlohmann::json& doc, const std::string& file, const LoadOptions& options,
                                     DataUris& uris);
+
+// EXT_meshopt_compression (gltf_meshopt.cpp). The decoded bytes of
+// bufferViews[index] when it carries the extension (decoded once, kept in
+// src.meshopt_views), else null. Every field is checked against the
+// specification's rules and the decoded size is capped as accessors are
+// (LoadOptions::max_triangles); corrupt or truncated data is an error naming
+// the view.
+const std::vector<unsigned char>* meshopt_view(const Source& src, int index);
+// A buffer that only stands in for the uncompressed data of compressed views
+// (marked "fallback": true, or given no data): it holds nothing to read.
+bool is_fallback_buffer(const tinygltf::Buffer& buffer);
+// Before tinygltf: each buffer without a uri that is a fallback (marked so,
+// or named only by compressed views) gets a one-byte stand-in (a name in
+// `uris`) and the fallback mark; tinygltf would otherwise refuse it, or read
+// the GLB's binary chunk for it. True if the document changed.
+bool stand_in_fallback_buffers(nlohmann::json& doc, bool binary, DataUris& uris);
+
+// KHR_draco_mesh_compression (gltf_draco.cpp): a primitive's attributes
+// decoded into the layout its accessors declare (tightly packed, of the
+// accessor's component type: Draco's values converted with the accessor's
+// `normalized`), and its triangles' corners.
+struct DracoPrimitive {
+    std::map<std::string, std::vector<unsigned char>> attributes;  // by glTF attribute name
+    std::vector<std::uint32_t> corners;
+};
+// The decoded primitive when it carries the extension, else nothing.
+std::optional<DracoPrimitive> decode_draco(const Source& src, const tinygltf::Primitive& p, const std::string& path);
+// Before tinygltf: removes "indices" from each primitive that carries the
+// extension (its triangles come from the Draco data; tinygltf refuses an
+// indices accessor without a buffer view, as such files have). True if the
+// document changed.
+bool drop_draco_indices(nlohmann::json& doc);
+// Points v (from view(), of the accessor of attribute `name`) at the decoded
+// values when the extension holds that attribute.
+void use_draco(const DracoPrimitive& d, const std::string& name, View& v);
 
 // Materials and the textures they name: appends to model.materials and model.textures.
 void read_materials(const Source& src, GltfModel& model);

@@ -28,8 +28,10 @@ bool has_version_1_structure(const nlohmann::json& doc) {
 }  // namespace
 
 const std::vector<std::string>& supported_extensions() {
-    static const std::vector<std::string> k = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                               "KHR_materials_ior", "KHR_mesh_quantization", "KHR_texture_transform"};
+    static const std::vector<std::string> k = {"EXT_meshopt_compression",      "KHR_draco_mesh_compression",
+                                               "KHR_lights_punctual",          "KHR_materials_emissive_strength",
+                                               "KHR_materials_ior",            "KHR_mesh_quantization",
+                                               "KHR_texture_transform"};
     return k;
 }
 

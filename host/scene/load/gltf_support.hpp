@@ -2,9 +2,8 @@
 // What clpath does not read in a glTF file, said by name: a glTF 1.0
 // document (whose dictionaries tinygltf reads as nothing, or refuses with a
 // message about something else), or an extension the file requires that
-// clpath does not implement (Draco- or meshopt-compressed buffers, Basis
-// textures), whose data would otherwise fail as "invalid bufferView" or load
-// as garbage.
+// clpath does not implement (Basis textures, say), whose data would
+// otherwise fail as "invalid bufferView" or load as garbage.
 #include <cstddef>
 #include <string>
 #include <vector>
