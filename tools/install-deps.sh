@@ -27,7 +27,8 @@ fi
 # both). NVIDIA's ptxas comes with the CUDA toolkit, not Debian: where
 # /usr/local/cuda/bin/ptxas is missing the gate skips sm_90 and says so.
 # libdraco-dev, libmeshoptimizer-dev: the decoders of Draco- and
-# meshopt-compressed glTF meshes (KHR_draco_mesh_compression, EXT_meshopt_compression).
+# meshopt-compressed glTF meshes (KHR_draco_mesh_compression, EXT_meshopt_compression);
+# gltfpack: the tests render its default output of a bundled model against the original.
 # python3-venv: the virtual environment that holds Open Image Denoise (below).
 packages="
     build-essential cmake pkg-config clang libclang-rt-14-dev
@@ -35,7 +36,7 @@ packages="
     pocl-opencl-icd ocl-icd-opencl-dev opencl-headers clinfo oclgrind
     libglm-dev libglfw3-dev libopenimageio-dev openimageio-tools
     libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libgtest-dev libxxhash-dev
-    libdraco-dev libmeshoptimizer-dev
+    libdraco-dev libmeshoptimizer-dev gltfpack
     xvfb xauth libimgui-dev glmark2-data
     python3-numpy python3-matplotlib python3-venv
     libembree-dev embree-tools

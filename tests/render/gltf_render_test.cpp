@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <utility>
@@ -220,62 +221,98 @@ TEST(GltfRender, SuzanneShowsItsBaseColourTexture) {
     EXPECT_NE(mean_r, mean_b) << "coloured";
 }
 
+// Renders of a file holding the repository's Suzanne, seen through the
+// original's camera (the presentation frames each file by its own bounds; a
+// control made larger must show larger): K runs with independent seeds.
+static std::vector<Image> suzanne_runs(const std::string& file, std::uint32_t seed0) {
+    static const Scene original = load_scene(scenes_dir() + "/suzanne/Suzanne.gltf");
+    Scene s = load_scene(file);
+    s.camera = original.camera;
+    s.camera.width = 48;
+    s.camera.height = 36;
+    RenderSettings st;
+    st.max_depth = 4;
+    return test::render_runs(s, st, 16, 8, seed0);
+}
+
+// A folder for rewritten Suzanne files, holding the model's two images.
+static std::filesystem::path suzanne_folder(const std::string& name) {
+    namespace fs = std::filesystem;
+    const fs::path out = test::temp_path(name);
+    fs::create_directories(out);
+    for (const char* png : {"Suzanne_BaseColor.png", "Suzanne_MetallicRoughness.png"})
+        fs::copy_file(fs::path(scenes_dir()) / "suzanne" / png, out / png, fs::copy_options::overwrite_existing);
+    return out;
+}
+
+static std::string write_json(const std::filesystem::path& folder, const std::string& name, const nlohmann::json& doc) {
+    std::ofstream(folder / name) << doc.dump();
+    return (folder / name).string();
+}
+
+// The same file with its one node 5 % larger: a control the comparison must reject.
+static std::string larger_copy(const std::filesystem::path& folder, const nlohmann::json& doc) {
+    nlohmann::json larger = doc;
+    for (auto& s : larger["nodes"][0]["scale"]) s = s.get<float>() * 1.05f;
+    return write_json(folder, "larger.gltf", larger);
+}
+
 // The repository's Suzanne quantised as gltfpack writes it by default
 // (KHR_mesh_quantization: uint16 positions, int8 normals, uint16 texture
 // coordinates mapped back by KHR_texture_transform on both textures) renders
 // the same image as the original: its geometry moves by at most half a grid
 // step (1/131070 of the model's size), far below what the pixels resolve.
-// K runs per side with independent seeds; 8x8 blocks z-tested at a
+// 8 runs per side with independent seeds; 8x8 blocks z-tested at a
 // Sidak-corrected 1e-7 over all blocks (a false failure rarer than once in
 // ten million runs). Controls: the model 5 % larger, and its base-colour and
 // metallic-roughness images swapped, are rejected. (Its texture transform is
 // near the identity and its base colour near uniform, so that dropping the
 // transform is below the noise: the geometry test checks the transform.)
 TEST(GltfRender, QuantisedSuzanneRendersLikeTheOriginal) {
-    namespace fs = std::filesystem;
-    const std::string dir = scenes_dir() + "/suzanne";
-    const GltfModel model = load_gltf(dir + "/Suzanne.gltf", LoadOptions{});
-    const fs::path out = test::temp_path("quantised-suzanne");
-    fs::create_directories(out);
-    for (const char* png : {"Suzanne_BaseColor.png", "Suzanne_MetallicRoughness.png"})
-        fs::copy_file(fs::path(dir) / png, out / png, fs::copy_options::overwrite_existing);
+    const std::filesystem::path out = suzanne_folder("quantised-suzanne");
+    const GltfModel model = load_gltf(scenes_dir() + "/suzanne/Suzanne.gltf", LoadOptions{});
     const test::QuantisedGltf q = test::quantise_like_gltfpack(
         model.meshes[0][0], {"Suzanne_BaseColor.png", "Suzanne_MetallicRoughness.png"}, "q.bin");
     std::ofstream(out / "q.bin", std::ios::binary) << q.bin;
-    const auto write = [&](const std::string& name, const nlohmann::json& doc) {
-        std::ofstream(out / name) << doc.dump();
-        return (out / name).string();
-    };
-    nlohmann::json swapped = q.doc, larger = q.doc;
+    nlohmann::json swapped = q.doc;
     std::swap(swapped["images"][0], swapped["images"][1]);
-    for (auto& s : larger["nodes"][0]["scale"]) s = s.get<float>() * 1.05f;
-    const std::string quantised_file = write("q.gltf", q.doc);
-    const std::string swapped_file = write("swapped.gltf", swapped);
-    const std::string larger_file = write("larger.gltf", larger);
 
-    // The presentation frames each file by its own bounds; all are seen
-    // through the original's camera, so that the larger control shows larger.
-    const Scene original_scene = load_scene(dir + "/Suzanne.gltf");
-    RenderSettings st;
-    st.max_depth = 4;
-    constexpr int kRuns = 8;
-    const auto runs = [&](const std::string& file, std::uint32_t seed0) {
-        Scene s = load_scene(file);
-        s.camera = original_scene.camera;
-        s.camera.width = 48;
-        s.camera.height = 36;
-        return test::render_runs(s, st, 16, kRuns, seed0);
-    };
-    const std::vector<Image> original = runs(dir + "/Suzanne.gltf", 100);
-    const test::Agreement same = test::image_agreement(original, runs(quantised_file, 200), 8, 1e-7);
+    const std::vector<Image> original = suzanne_runs(scenes_dir() + "/suzanne/Suzanne.gltf", 100);
+    const auto same = test::image_agreement(original, suzanne_runs(write_json(out, "q.gltf", q.doc), 200), 8, 1e-7);
     EXPECT_TRUE(same.ok()) << same.describe();
-    const test::Agreement swapped_images = test::image_agreement(original, runs(swapped_file, 300), 8, 1e-7);
+    const auto swapped_images =
+        test::image_agreement(original, suzanne_runs(write_json(out, "swapped.gltf", swapped), 300), 8, 1e-7);
     EXPECT_FALSE(swapped_images.ok()) << "control: images swapped: " << swapped_images.describe();
-    const test::Agreement larger_model = test::image_agreement(original, runs(larger_file, 400), 8, 1e-7);
-    EXPECT_FALSE(larger_model.ok()) << "control: 5 % larger: " << larger_model.describe();
+    const auto larger = test::image_agreement(original, suzanne_runs(larger_copy(out, q.doc), 400), 8, 1e-7);
+    EXPECT_FALSE(larger.ok()) << "control: 5 % larger: " << larger.describe();
     std::printf("quantised: %s\nswapped images: %s\n5 %% larger: %s\n", same.describe().c_str(),
-                swapped_images.describe().c_str(), larger_model.describe().c_str());
-    fs::remove_all(out);
+                swapped_images.describe().c_str(), larger.describe().c_str());
+    std::filesystem::remove_all(out);
+}
+
+// gltfpack itself (Debian's, tools/install-deps.sh), with its default
+// options: 14-bit positions, 8-bit normals, 12-bit texture coordinates under
+// a texture transform, vertices merged and reindexed. The same comparison and
+// the same 5 % control as above.
+TEST(GltfRender, GltfpackDefaultOutputRendersLikeTheOriginal) {
+    if (std::system("command -v gltfpack > /dev/null 2>&1") != 0)
+        GTEST_SKIP() << "SKIPPED: gltfpack is not installed (tools/install-deps.sh installs it), nothing tested";
+    const std::filesystem::path out = suzanne_folder("gltfpack-suzanne");
+    const std::string packed = (out / "packed.gltf").string();
+    const std::string command =
+        "gltfpack -i '" + scenes_dir() + "/suzanne/Suzanne.gltf' -o '" + packed + "' > /dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    std::ifstream in(packed);
+    const nlohmann::json doc = nlohmann::json::parse(in);
+    ASSERT_EQ(doc.at("extensionsRequired"), nlohmann::json({"KHR_mesh_quantization"})) << "gltfpack's default quantises";
+
+    const std::vector<Image> original = suzanne_runs(scenes_dir() + "/suzanne/Suzanne.gltf", 500);
+    const auto same = test::image_agreement(original, suzanne_runs(packed, 600), 8, 1e-7);
+    EXPECT_TRUE(same.ok()) << same.describe();
+    const auto larger = test::image_agreement(original, suzanne_runs(larger_copy(out, doc), 700), 8, 1e-7);
+    EXPECT_FALSE(larger.ok()) << "control: 5 % larger: " << larger.describe();
+    std::printf("gltfpack: %s\n5 %% larger: %s\n", same.describe().c_str(), larger.describe().c_str());
+    std::filesystem::remove_all(out);
 }
 
 // Texture slots and coverage live in their own buffer, filled only for a
