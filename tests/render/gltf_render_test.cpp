@@ -290,28 +290,37 @@ TEST(GltfRender, QuantisedSuzanneRendersLikeTheOriginal) {
     std::filesystem::remove_all(out);
 }
 
-// gltfpack itself (Debian's, tools/install-deps.sh), with its default
-// options: 14-bit positions, 8-bit normals, 12-bit texture coordinates under
-// a texture transform, vertices merged and reindexed. The same comparison and
-// the same 5 % control as above.
-TEST(GltfRender, GltfpackDefaultOutputRendersLikeTheOriginal) {
+// gltfpack itself (Debian's, tools/install-deps.sh): its default output
+// (14-bit positions, 8-bit normals, 12-bit texture coordinates under a
+// texture transform, vertices merged and reindexed) and its -cc output (the
+// same, EXT_meshopt_compression with its filters on top). The same comparison
+// and the same 5 % control as above, for each.
+TEST(GltfRender, GltfpackOutputRendersLikeTheOriginal) {
     if (std::system("command -v gltfpack > /dev/null 2>&1") != 0)
         GTEST_SKIP() << "SKIPPED: gltfpack is not installed (tools/install-deps.sh installs it), nothing tested";
     const std::filesystem::path out = suzanne_folder("gltfpack-suzanne");
-    const std::string packed = (out / "packed.gltf").string();
-    const std::string command =
-        "gltfpack -i '" + scenes_dir() + "/suzanne/Suzanne.gltf' -o '" + packed + "' > /dev/null 2>&1";
-    ASSERT_EQ(std::system(command.c_str()), 0) << command;
-    std::ifstream in(packed);
-    const nlohmann::json doc = nlohmann::json::parse(in);
-    ASSERT_EQ(doc.at("extensionsRequired"), nlohmann::json({"KHR_mesh_quantization"})) << "gltfpack's default quantises";
-
     const std::vector<Image> original = suzanne_runs(scenes_dir() + "/suzanne/Suzanne.gltf", 500);
-    const auto same = test::image_agreement(original, suzanne_runs(packed, 600), 8, 1e-7);
-    EXPECT_TRUE(same.ok()) << same.describe();
-    const auto larger = test::image_agreement(original, suzanne_runs(larger_copy(out, doc), 700), 8, 1e-7);
-    EXPECT_FALSE(larger.ok()) << "control: 5 % larger: " << larger.describe();
-    std::printf("gltfpack: %s\n5 %% larger: %s\n", same.describe().c_str(), larger.describe().c_str());
+    std::uint32_t seed = 600;
+    for (const std::string options : {"", "-cc"}) {
+        SCOPED_TRACE("gltfpack " + options);
+        const std::string packed = (out / ("packed" + options + ".gltf")).string();
+        const std::string command = "gltfpack " + options + " -i '" + scenes_dir() + "/suzanne/Suzanne.gltf' -o '" +
+                                    packed + "' > /dev/null 2>&1";
+        ASSERT_EQ(std::system(command.c_str()), 0) << command;
+        std::ifstream in(packed);
+        const nlohmann::json doc = nlohmann::json::parse(in);
+        const nlohmann::json required = doc.at("extensionsRequired");
+        EXPECT_NE(std::find(required.begin(), required.end(), "KHR_mesh_quantization"), required.end());
+        if (options == "-cc") {
+            EXPECT_NE(std::find(required.begin(), required.end(), "EXT_meshopt_compression"), required.end());
+        }
+        const auto same = test::image_agreement(original, suzanne_runs(packed, seed++), 8, 1e-7);
+        EXPECT_TRUE(same.ok()) << same.describe();
+        const auto larger = test::image_agreement(original, suzanne_runs(larger_copy(out, doc), seed++), 8, 1e-7);
+        EXPECT_FALSE(larger.ok()) << "control: 5 % larger: " << larger.describe();
+        std::printf("gltfpack %s: %s\n5 %% larger: %s\n", options.c_str(), same.describe().c_str(),
+                    larger.describe().c_str());
+    }
     std::filesystem::remove_all(out);
 }
 
