@@ -133,7 +133,7 @@ static inline float4 gltf_layer_probabilities(CLP_MAT_SPACE const Material* m, c
     return (float4)(coat, spec, body * (1.0f - t), body * t) / sum;
 }
 
-static float3 gltf_layered_eval(CLP_MAT_SPACE const Material* m, float3 wo, float3 wi, const GltfLayers* l, float* pdf) {
+CLP_GPU_INLINE float3 gltf_layered_eval(CLP_MAT_SPACE const Material* m, float3 wo, float3 wi, const GltfLayers* l, float* pdf) {
     *pdf = 0.0f;
     if (wo.z <= 0.0f || wi.z == 0.0f) return (float3)(0.0f);
     float alpha = gltf_alpha(m);
@@ -178,7 +178,7 @@ static float3 gltf_layered_eval(CLP_MAT_SPACE const Material* m, float3 wo, floa
     return f;
 }
 
-static int gltf_layered_sample(CLP_MAT_SPACE const Material* m, float3 wo, const GltfLayers* l, float u1, float u2,
+CLP_GPU_INLINE int gltf_layered_sample(CLP_MAT_SPACE const Material* m, float3 wo, const GltfLayers* l, float u1, float u2,
                                float u3, float3* wi) {
     if (wo.z <= 0.0f) return 0;
     float4 p = gltf_layer_probabilities(m, l, wo);

@@ -205,8 +205,8 @@ typedef struct {
 } GltfLayers;
 #define CLP_LAYERS_PARAM , const GltfLayers* layers
 #define CLP_LAYERS_ARG(l) , (l)
-static float3 gltf_layered_eval(CLP_MAT_SPACE const Material* m, float3 wo, float3 wi, const GltfLayers* l, float* pdf);
-static int gltf_layered_sample(CLP_MAT_SPACE const Material* m, float3 wo, const GltfLayers* l, float u1, float u2,
+CLP_GPU_INLINE float3 gltf_layered_eval(CLP_MAT_SPACE const Material* m, float3 wo, float3 wi, const GltfLayers* l, float* pdf);
+CLP_GPU_INLINE int gltf_layered_sample(CLP_MAT_SPACE const Material* m, float3 wo, const GltfLayers* l, float u1, float u2,
                                float u3, float3* wi);
 #else
 #define CLP_LAYERS_PARAM
