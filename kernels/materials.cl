@@ -192,6 +192,27 @@ static float3 gltf_eval(CLP_MAT_SPACE const Material* m, float3 wo, float3 wi, f
 static int gltf_sample(CLP_MAT_SPACE const Material* m, float3 wo, float u1, float u2, float u3, float3* wi);
 #endif
 
+#ifdef CLP_GLTF_LAYERS
+/* A glTF material's layers at one point, textures applied (surface_params.cl):
+ * they travel beside the material, as the last argument of material_eval and
+ * material_sample, only in programs compiled with them, so other programs'
+ * BSDFs keep their arguments and registers. */
+typedef struct {
+    float3 coat_n;      /* the clear coat's normal (world; the interpolated normal unless the coat has a normal map) */
+    float clearcoat;    /* coat weight in [0, 1]; 0: no coat */
+    float coat_roughness;
+    float transmission; /* share of the dielectric base's diffuse lobe that transmits, [0, 1] */
+} GltfLayers;
+#define CLP_LAYERS_PARAM , const GltfLayers* layers
+#define CLP_LAYERS_ARG(l) , (l)
+CLP_GPU_INLINE float3 gltf_layered_eval(CLP_MAT_SPACE const Material* m, float3 wo, float3 wi, const GltfLayers* l, float* pdf);
+CLP_GPU_INLINE int gltf_layered_sample(CLP_MAT_SPACE const Material* m, float3 wo, const GltfLayers* l, float u1, float u2,
+                               float u3, float3* wi);
+#else
+#define CLP_LAYERS_PARAM
+#define CLP_LAYERS_ARG(l)
+#endif
+
 /* ---- the BSDF interface ------------------------------------------------- */
 
 typedef struct {
@@ -219,10 +240,25 @@ static inline Frame scatter_frame(CLP_MAT_SPACE const Material* m, float3 ng, fl
     return frame_about(ns);
 }
 
+#ifdef CLP_GLTF_LAYERS
+/* The layers in scatter_frame's local frame f: the coat normal turned to wo's
+ * side of the geometric normal, as the shading normal is (a coat normal
+ * facing away from the viewer is unusable: the geometric normal stands in). */
+static inline GltfLayers gltf_layers_local(const GltfLayers* l, const Frame* f, float3 ng, float3 wo_w) {
+    GltfLayers out = *l;
+    float s = dot(wo_w, ng) >= 0.0f ? 1.0f : -1.0f;
+    float3 nc = l->coat_n * s;
+    if (dot(nc, ng * s) < 0.0f) nc = ng * s;
+    out.coat_n = to_local(f, nc);
+    return out;
+}
+#endif
+
 /* f(wo, wi) |cos theta_i| and the pdf with which material_sample picks wi.
  * Delta lobes evaluate to 0. A reflection whose wi falls below the geometric
  * surface is 0: that light would have come through the triangle. */
-static inline float3 material_eval(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns, float3 wo_w, float3 wi_w, float* pdf) {
+static inline float3 material_eval(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns, float3 wo_w, float3 wi_w,
+                                   float* pdf CLP_LAYERS_PARAM) {
     *pdf = 0.0f;
     Frame f = scatter_frame(m, ng, ns, wo_w);
     float3 wo = to_local(&f, wo_w), wi = to_local(&f, wi_w);
@@ -237,6 +273,15 @@ static inline float3 material_eval(CLP_MAT_SPACE const Material* m, float3 ng, f
         if (wo.z < 0.0f) { wo.z = -wo.z; wi.z = -wi.z; } /* mirror an inside wo above the surface */
         float fc = rough_dielectric_eval(wo, wi, alpha, eta, pdf);
         return wi.z < 0.0f ? CLP_M3(m->albedo) * fc : (float3)(fc);
+    }
+#endif
+#ifdef CLP_GLTF_LAYERS
+    if (m->kind == CLP_MAT_GLTF) {
+        /* Transmission: the lobe (reflection or transmission) must agree
+         * between the shading frame and the geometry, as for glass. */
+        if ((wi.z > 0.0f) != (dot(wi_w, ng) * dot(wo_w, ng) > 0.0f)) return (float3)(0.0f);
+        GltfLayers l = gltf_layers_local(layers, &f, ng, wo_w);
+        return gltf_layered_eval(m, wo, wi, &l, pdf);
     }
 #endif
     if (dot(wi_w, ng) * dot(wo_w, ng) <= 0.0f) return (float3)(0.0f); /* reflection only, below this line */
@@ -266,7 +311,7 @@ static inline float3 material_eval(CLP_MAT_SPACE const Material* m, float3 ng, f
 
 /* Samples wi for wo with the numbers u1..u3. Returns 0 when the path ends here. */
 static inline int material_sample(CLP_MAT_SPACE const Material* m, float3 ng, float3 ns, float3 wo_w, float u1, float u2, float u3,
-                           BsdfSample* s) {
+                           BsdfSample* s CLP_LAYERS_PARAM) {
     Frame f = scatter_frame(m, ng, ns, wo_w);
     float3 wo = to_local(&f, wo_w);
     s->delta = 0;
@@ -318,12 +363,23 @@ static inline int material_sample(CLP_MAT_SPACE const Material* m, float3 ng, fl
     case CLP_MAT_GLTF: {
         /* One definition: the sampled direction's value and pdf come from gltf_eval. */
         float3 wi;
+#ifdef CLP_GLTF_LAYERS
+        GltfLayers l = gltf_layers_local(layers, &f, ng, wo_w);
+        if (!gltf_layered_sample(m, wo, &l, u1, u2, u3, &wi)) return 0;
+        float3 val = gltf_layered_eval(m, wo, wi, &l, &s->pdf);
+        if (!(s->pdf > 0.0f)) return 0;
+        s->wi = from_local(&f, wi);
+        s->weight = val / s->pdf;
+        /* Reflection must stay on wo's side of the triangle, transmission cross it. */
+        return (dot(s->wi, ng) * dot(wo_w, ng) > 0.0f) == (wi.z > 0.0f);
+#else
         if (!gltf_sample(m, wo, u1, u2, u3, &wi)) return 0;
         float3 val = gltf_eval(m, wo, wi, &s->pdf);
         if (!(s->pdf > 0.0f)) return 0;
         s->wi = from_local(&f, wi);
         s->weight = val / s->pdf;
         break;
+#endif
     }
 #endif
 #ifdef CLP_HAS_MAT_DIELECTRIC

@@ -115,7 +115,7 @@ CLP_GPU_INLINE float3 path_light_eval(const Surface* s, float3 wo, const LightSa
     sh->active = 0;
     if (!lit) return (float3)(0.0f);
     float bsdf_pdf;
-    float3 f = material_eval(surface_material(s), s->ng, s->ns, wo, ls->wi, &bsdf_pdf);
+    float3 f = material_eval(surface_material(s), s->ng, s->ns, wo, ls->wi, &bsdf_pdf surface_layers_arg(s));
     if (!(max3(f) > 0.0f) || !(max3(ls->L) > 0.0f)) return (float3)(0.0f);
     float3 o = offset_ray_origin(s->p, s->err, s->ng, ls->wi);
     sh->active = 1;
@@ -145,7 +145,7 @@ CLP_GPU_INLINE void path_light_join(PathState* ps, float3 v, ShadowRay* sh) {
  * wo the direction back along its ray). Returns 0 when the path ends here. */
 CLP_GPU_INLINE int path_scatter(Rng* rng, const Surface* s, float3 wo, BsdfSample* bs) {
     float u1 = rng_next(rng), u2 = rng_next(rng), u3 = rng_next(rng);
-    return material_sample(surface_material(s), s->ng, s->ns, wo, u1, u2, u3, bs);
+    return material_sample(surface_material(s), s->ng, s->ns, wo, u1, u2, u3, bs surface_layers_arg(s));
 }
 
 /* The path goes on along the sampled direction bs->wi from s. */

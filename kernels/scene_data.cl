@@ -81,12 +81,21 @@ typedef struct {
 #ifdef CLP_SURFACE_PARAMS
     Material mat; /* m with this point's textures and vertex colour applied (surface_params.cl) */
 #endif
+#ifdef CLP_GLTF_LAYERS
+    GltfLayers layers; /* mat's clear coat and transmission (surface_params.cl) */
+#endif
 } Surface;
 
 #ifdef CLP_SURFACE_PARAMS
 #define surface_material(s) (&(s)->mat)
 #else
 #define surface_material(s) ((s)->m)
+#endif
+/* The BSDF's arguments after the material's: the layers where compiled in. */
+#ifdef CLP_GLTF_LAYERS
+#define surface_layers_arg(s) CLP_LAYERS_ARG(&(s)->layers)
+#else
+#define surface_layers_arg(s)
 #endif
 
 /* The surface a hit found, written to *out (not returned: see no_hit in
@@ -112,7 +121,7 @@ CLP_GPU_INLINE void surface_at(Surface* out, const SceneData* sc, const Hit* h, 
     }
 #endif
 #ifdef CLP_SURFACE_PARAMS
-    surface_params(&sc->sd, s.m, mi, s.tv, h->b1, h->b2, &s.ns, &s.mat);
+    surface_params(&sc->sd, s.m, mi, s.tv, h->b1, h->b2, &s.ns, &s.mat surface_layers_arg(&s));
 #endif
     *out = s;
 }

@@ -70,7 +70,12 @@ enum { CLP_MATERIAL_KINDS(CLP_MAT_ENUMERATOR) CLP_MAT_KIND_COUNT };
 #define CLP_TEX_MR 1u       /* metallic (B) and roughness (G), linear */
 #define CLP_TEX_NORMAL 2u   /* tangent-space normal, linear */
 #define CLP_TEX_EMISSION 3u /* emission (sRGB) */
-#define CLP_TEX_SLOTS 4u
+#define CLP_TEX_CORE_SLOTS 4u /* the core material's maps; the layers' follow */
+#define CLP_TEX_CLEARCOAT 4u           /* KHR_materials_clearcoat: coat weight (R), linear */
+#define CLP_TEX_CLEARCOAT_ROUGHNESS 5u /* coat roughness (G), linear */
+#define CLP_TEX_CLEARCOAT_NORMAL 6u    /* the coat's tangent-space normal, linear */
+#define CLP_TEX_TRANSMISSION 7u        /* KHR_materials_transmission: transmission (R), linear */
+#define CLP_TEX_SLOTS 8u
 
 /* Integrators (RenderSettings.integrator); each is compiled in alone. */
 #define CLP_INTEGRATOR_PATH 0u      /* next-event estimation + MIS */
@@ -222,17 +227,23 @@ typedef struct {
     uint pad0;
 } Material;
 
-/* The rest of a material: texture maps and coverage, one record per material
- * in a buffer of its own (parallel to the materials). Only kernels compiled
- * with textures (CLP_HAS_TEXTURES) or alpha cut-outs (CLP_HAS_ALPHA) read it;
- * for a scene with neither the host uploads one zero record, and
+/* The rest of a material: texture maps, coverage and the glTF layers
+ * (clear coat, transmission), one record per material in a buffer of its own
+ * (parallel to the materials). Only kernels compiled with textures
+ * (CLP_HAS_TEXTURES), alpha cut-outs (CLP_HAS_ALPHA), a clear coat
+ * (CLP_HAS_CLEARCOAT) or transmission (CLP_HAS_TRANSMISSION) read it; for a
+ * scene with none of them the host uploads one zero record, and
  * FrameParams.scene_flags lacks CLP_SCENE_MATERIAL_EXT. */
 typedef struct {
-    int texture[4];     /* CLP_TEX_* slots: index into the texture descriptors, or CLP_NO_TEXTURE */
+    int texture[8];     /* CLP_TEX_* slots: index into the texture descriptors, or CLP_NO_TEXTURE */
     float alpha;        /* coverage factor (base colour alpha), see alpha_mode */
     uint alpha_mode;    /* CLP_ALPHA_* */
     float alpha_cutoff;
     float normal_scale; /* normal map: scales the tangent-space x and y */
+    float clearcoat;    /* gltf: weight of the clear coat (KHR_materials_clearcoat); 0: none */
+    float clearcoat_roughness;    /* the coat's GGX alpha = clearcoat_roughness^2 */
+    float clearcoat_normal_scale; /* the coat's normal map: scales the tangent-space x and y */
+    float transmission; /* gltf: share of the dielectric base's diffuse lobe that transmits (KHR_materials_transmission) */
 } MaterialExt;
 
 /* One texture in the texel buffer: width x height texels from `offset` (in
@@ -391,7 +402,8 @@ CLP_STATIC_ASSERT(__builtin_offsetof(BvhNode64, child0) == 12 && __builtin_offse
 CLP_STATIC_ASSERT(__builtin_offsetof(TriVerts, v1) == 16 && __builtin_offsetof(TriVerts, v2) == 32,
                   tri_verts_rows);
 CLP_STATIC_ASSERT(sizeof(Material) == 48, material_is_48_bytes);
-CLP_STATIC_ASSERT(sizeof(MaterialExt) == 32, material_ext_is_32_bytes);
+CLP_STATIC_ASSERT(sizeof(MaterialExt) == 64, material_ext_is_64_bytes);
+CLP_STATIC_ASSERT(sizeof(((MaterialExt*)0)->texture) == CLP_TEX_SLOTS * sizeof(int), material_ext_texture_slots);
 CLP_STATIC_ASSERT(sizeof(TextureDesc) == 16, texture_desc_is_16_bytes);
 CLP_STATIC_ASSERT(sizeof(CameraData) == 80, camera_is_80_bytes);
 CLP_STATIC_ASSERT(sizeof(FrameParams) == 176, frame_params_is_176_bytes);

@@ -35,11 +35,12 @@ static inline float4 surface_tangent(const SurfaceData* sd, global const TriVert
     return (float4)(dpdu, dot(cross(n, dpdu), dpdv) > 0.0f ? -1.0f : 1.0f);
 }
 
-static inline float3 normal_mapped(const SurfaceData* sd, global const MaterialExt* gm, global const TriVerts* tv, float b1,
+/* ns bent by the tangent-space normal map `tex`, its x and y scaled by `scale`. */
+static inline float3 normal_mapped(const SurfaceData* sd, int tex, float scale, global const TriVerts* tv, float b1,
                             float b2, float2 uv, float3 ns) {
-    float3 tn = texture_sample(sd, gm->texture[CLP_TEX_NORMAL], uv, 0).xyz * 2.0f - 1.0f;
-    tn.x *= gm->normal_scale;
-    tn.y *= gm->normal_scale;
+    float3 tn = texture_sample(sd, tex, uv, 0).xyz * 2.0f - 1.0f;
+    tn.x *= scale;
+    tn.y *= scale;
     float4 t = surface_tangent(sd, tv, b1, b2);
     float3 T = t.xyz - ns * dot(ns, t.xyz);
     float len = length3(T);
@@ -52,10 +53,49 @@ static inline float3 normal_mapped(const SurfaceData* sd, global const MaterialE
 }
 #endif
 
+#ifdef CLP_GLTF_LAYERS
+/* The glTF layers of material mi at a hit (ns: the interpolated normal, before
+ * the base's normal map, which the coat does not share): factors times their
+ * textures (weight R, roughness G, transmission R, all linear). */
+static inline void surface_layers(const SurfaceData* sd, global const Material* gm, uint mi, global const TriVerts* tv,
+                                  float b1, float b2, float3 ns, GltfLayers* out) {
+    out->coat_n = ns;
+    out->clearcoat = 0.0f;
+    out->coat_roughness = 0.0f;
+    out->transmission = 0.0f;
+    if (!(sd->flags & CLP_SCENE_MATERIAL_EXT) || gm->kind != CLP_MAT_GLTF) return;
+    global const MaterialExt* ext = &sd->material_ext[mi];
+    float c = ext->clearcoat, cr = ext->clearcoat_roughness, t = ext->transmission;
+#ifdef CLP_HAS_TEXTURES
+    int ct = ext->texture[CLP_TEX_CLEARCOAT], crt = ext->texture[CLP_TEX_CLEARCOAT_ROUGHNESS];
+    int cnt = ext->texture[CLP_TEX_CLEARCOAT_NORMAL], tt = ext->texture[CLP_TEX_TRANSMISSION];
+    if (ct != CLP_NO_TEXTURE || crt != CLP_NO_TEXTURE || cnt != CLP_NO_TEXTURE || tt != CLP_NO_TEXTURE) {
+        float2 uv = surface_uv(sd, tv->prim, b1, b2);
+        if (ct != CLP_NO_TEXTURE) c *= texture_sample(sd, ct, uv, 0).x;
+        if (crt != CLP_NO_TEXTURE) cr *= texture_sample(sd, crt, uv, 0).y;
+        if (tt != CLP_NO_TEXTURE) t *= texture_sample(sd, tt, uv, 0).x;
+        if (cnt != CLP_NO_TEXTURE && c > 0.0f) out->coat_n = normal_mapped(sd, cnt, ext->clearcoat_normal_scale, tv, b1, b2, uv, ns);
+    }
+#endif
+    out->clearcoat = clamp(c, 0.0f, 1.0f);
+    out->coat_roughness = clamp(cr, 0.0f, 1.0f);
+    out->transmission = clamp(t, 0.0f, 1.0f);
+}
+#endif
+
+#ifdef CLP_GLTF_LAYERS
+#define CLP_LAYERS_OUT , GltfLayers* layers
+#else
+#define CLP_LAYERS_OUT
+#endif
+
 /* gm is material `mi` of the table (its MaterialExt has the same index). */
 static inline void surface_params(const SurfaceData* sd, global const Material* gm, uint mi, global const TriVerts* tv,
-                           float b1, float b2, float3* ns, Material* out) {
+                           float b1, float b2, float3* ns, Material* out CLP_LAYERS_OUT) {
     *out = *gm;
+#ifdef CLP_GLTF_LAYERS
+    surface_layers(sd, gm, mi, tv, b1, b2, *ns, layers);
+#endif
     float3 base = CLP_M3(gm->albedo);
 #ifdef CLP_HAS_VERTEX_COLORS
     base *= surface_color(sd, tv->prim, b1, b2).xyz;
@@ -83,7 +123,8 @@ static inline void surface_params(const SurfaceData* sd, global const Material* 
             out->emission[1] = e.y;
             out->emission[2] = e.z;
         }
-        if (ext->texture[CLP_TEX_NORMAL] != CLP_NO_TEXTURE) *ns = normal_mapped(sd, ext, tv, b1, b2, uv, *ns);
+        if (ext->texture[CLP_TEX_NORMAL] != CLP_NO_TEXTURE)
+            *ns = normal_mapped(sd, ext->texture[CLP_TEX_NORMAL], ext->normal_scale, tv, b1, b2, uv, *ns);
     }
 #endif
     out->albedo[0] = base.x;

@@ -23,7 +23,14 @@
 #include "rng.cl"
 #include "intersect.cl"
 
-#if defined(CLP_HAS_TEXTURES) || defined(CLP_HAS_VERTEX_COLORS)
+/* The glTF layers (KHR_materials_clearcoat, KHR_materials_transmission) are
+ * per-hit parameters beside the material (GltfLayers, materials.cl), read
+ * from the MaterialExt records by surface_params. */
+#if defined(CLP_HAS_CLEARCOAT) || defined(CLP_HAS_TRANSMISSION)
+#define CLP_GLTF_LAYERS 1
+#endif
+
+#if defined(CLP_HAS_TEXTURES) || defined(CLP_HAS_VERTEX_COLORS) || defined(CLP_GLTF_LAYERS)
 #define CLP_SURFACE_PARAMS 1
 #define CLP_MAT_SPACE
 #else

@@ -10,6 +10,7 @@ clpath_slow_tests(presentation_test  # 11-16 s cold, 2 s warm: the bare-mesh ren
     PresentationRender.BareGltfShowsModelGroundAndShadow PresentationRender.GltfControlWithoutTheSunHasNoShadow)
 clpath_slow_tests(convergence_test Convergence.MseFallsAsOneOverSpp)  # 12-23 s
 clpath_slow_tests(adaptive_test Adaptive.ImageMeanIsUnbiasedAndABiasedRuleIsCaught)  # 19-25 s: 72 renders
+clpath_slow_tests(gltf_layers_test GltfLayers.WhiteFurnaceNeverCreatesEnergy)  # 6-13 s: 180 cases x 100k samples
 clpath_slow_tests(furnace_test WhiteFurnace.UniformHemisphere WhiteFurnace.ThesisDepthRussianRoulette)  # 7-13 s
 clpath_slow_tests(reference_agreement_test  # 6-30 s
     ReferenceAgreement.EveryEntryAgrees ReferenceAgreement.RejectsAWrongImage ReferenceAgreement.CrossDevice)

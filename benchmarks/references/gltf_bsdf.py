@@ -27,7 +27,21 @@ Sampling (any correct scheme serves a reference; this one shares nothing
 with clpath's): with probability p the specular lobe, half vectors from
 D(h) cos(theta_h) (Walter et al. 2007, eq. 35-36) reflected about h; else
 cosine-weighted directions. p = 0.5 + 0.5 metallic. The pdf is the mixture's.
-One-sided (front only): the export wraps it in twosided, normalmap and mask.
+The layers (KHR_materials_clearcoat, KHR_materials_transmission), as clpath
+models them (its material_gltf.cl states the same formulas):
+  clear coat c, alpha_c = clearcoat_roughness^2 (at least 1e-3), F_c = F_schlick(0.04, .):
+    f = c F_c(v.h) D_c(h) G2_c(v, l) / (4 n.v n.l) + (1 - c F_c(n.v)) (1 - c F_c(n.l)) f_material
+    (the extension's fresnel_coat, with the coat's Fresnel at the microfacet
+    and the base attenuated both ways, which makes it reciprocal)
+  transmission t (thin-walled): t of the dielectric's diffuse base becomes
+    base_color (1 - F(n.v)) (1 - F(|n.l|)) D(h') G2(v, l') / (4 n.v |n.l|)
+    with l' = l mirrored through the surface (z negated), h' = normalize(v + l'):
+    the reflection lobe about the straight-through direction.
+  The coat's normal is the shading normal (the export refuses coat normal maps).
+One-sided (front only) without transmission: the export wraps it in twosided,
+normalmap and mask. With transmission it is two-sided itself (a view from
+below sees the mirror image of the material, as clpath's frame turned to the
+viewer), since Mitsuba's twosided takes no transmitting BSDF.
 Also here: the threshold texture (alpha MASK) and the product texture (base
 colour times vertex colours) the export uses.
 """
@@ -68,78 +82,139 @@ class GltfMetallicRoughness(mi.BSDF):
         self.metallic = _texture(props, "metallic", 0.0)
         ior = props.get("ior", 1.5)
         self.f0 = ((ior - 1.0) / (ior + 1.0)) ** 2
-        glossy = mi.BSDFFlags.GlossyReflection | mi.BSDFFlags.FrontSide
-        diffuse = mi.BSDFFlags.DiffuseReflection | mi.BSDFFlags.FrontSide
+        self.clearcoat = _texture(props, "clearcoat", 0.0)
+        self.clearcoat_roughness = _texture(props, "clearcoat_roughness", 0.0)
+        self.transmission = _texture(props, "transmission", 0.0)
+        # Transmission makes the BSDF two-sided itself (see the top).
+        self.transmits = props.get("transmits", False)
+        side = mi.BSDFFlags.FrontSide | (mi.BSDFFlags.BackSide if self.transmits else mi.BSDFFlags.Empty)
+        glossy = mi.BSDFFlags.GlossyReflection | side
+        diffuse = mi.BSDFFlags.DiffuseReflection | side
         self.m_components = [glossy, diffuse]
         self.m_flags = glossy | diffuse
+        if self.transmits:
+            self.m_components.append(mi.BSDFFlags.GlossyTransmission | side)
+            self.m_flags = self.m_flags | mi.BSDFFlags.GlossyTransmission
 
     def _params(self, si, active):
         base = self.base_color.eval(si, active)
         r = self.roughness.eval_1(si, active)
         alpha = dr.maximum(r * r, ALPHA_MIN)
         metal = dr.clip(self.metallic.eval_1(si, active), 0.0, 1.0)
-        return base, alpha, metal
+        c = dr.clip(self.clearcoat.eval_1(si, active), 0.0, 1.0)
+        rc = dr.clip(self.clearcoat_roughness.eval_1(si, active), 0.0, 1.0)
+        t = dr.clip(self.transmission.eval_1(si, active), 0.0, 1.0)
+        return base, alpha, metal, c, dr.maximum(rc * rc, ALPHA_MIN), t
 
-    def _value(self, wi, wo, base, alpha, metal):
-        """f(wi, wo) cos(theta_o), Mitsuba's naming: wi to the viewer, wo to the light."""
+    def _local(self, wi, wo):
+        """The directions in the frame turned to the viewer (two-sided with transmission)."""
+        if not self.transmits:
+            return wi, wo
+        flip = mi.Frame3f.cos_theta(wi) < 0
+        s = dr.select(flip, -1.0, 1.0)
+        return mi.Vector3f(wi.x, wi.y, wi.z * s), mi.Vector3f(wo.x, wo.y, wo.z * s)
+
+    def _value(self, wi, wo, p):
+        """f(wi, wo) |cos(theta_o)|, Mitsuba's naming: wi to the viewer, wo to the light."""
+        base, alpha, metal, c, alpha_c, t = p
+        wi, wo = self._local(wi, wo)
         ci, co = mi.Frame3f.cos_theta(wi), mi.Frame3f.cos_theta(wo)
+        aco = dr.abs(co)
+        under = (1.0 - c * _schlick(0.04, ci)) * (1.0 - c * _schlick(0.04, aco))
+        body = (1.0 - metal) * (1.0 - _schlick(self.f0, ci)) * (1.0 - _schlick(self.f0, aco))
+        # Reflection.
         h = dr.normalize(wi + wo)
         vh = dr.dot(wi, h)
         g2 = 1.0 / (1.0 + _smith_lambda(ci, alpha) + _smith_lambda(co, alpha))
         s_cos = _ggx_d(mi.Frame3f.cos_theta(h), alpha) * g2 / (4.0 * ci)  # S times n.l
         metal_part = _schlick(base, vh) * s_cos
-        coat = _schlick(self.f0, vh) * s_cos
-        diff = base * ((1.0 - _schlick(self.f0, ci)) * (1.0 - _schlick(self.f0, co)) * co / dr.pi)
-        val = metal * metal_part + (1.0 - metal) * (diff + coat)
-        return dr.select((ci > 0) & (co > 0), val, 0.0)
+        spec = _schlick(self.f0, vh) * s_cos
+        diff = base * (body * (1.0 - t) * co / dr.pi)
+        g2c = 1.0 / (1.0 + _smith_lambda(ci, alpha_c) + _smith_lambda(co, alpha_c))
+        coat = c * _schlick(0.04, vh) * _ggx_d(mi.Frame3f.cos_theta(h), alpha_c) * g2c / (4.0 * ci)
+        refl = under * (metal * metal_part + (1.0 - metal) * spec + diff) + coat
+        # Thin-walled transmission: the reflection lobe mirrored through the surface.
+        wr = mi.Vector3f(wo.x, wo.y, aco)
+        hr = dr.normalize(wi + wr)
+        g2r = 1.0 / (1.0 + _smith_lambda(ci, alpha) + _smith_lambda(aco, alpha))
+        trans = base * (under * body * t * _ggx_d(mi.Frame3f.cos_theta(hr), alpha) * g2r / (4.0 * ci))
+        val = dr.select(co > 0, refl, trans)
+        ok = (ci > 0) & ((co > 0) | ((co < 0) & self.transmits))
+        return dr.select(ok, val, 0.0)
 
-    def _pdf(self, wi, wo, alpha, metal):
+    def _probabilities(self, p):
+        """Lobe choice, shared with nothing in clpath: coat, specular, diffuse, transmission."""
+        _, _, metal, c, _, t = p
+        p_coat = dr.select(c > 0, 0.25, 0.0)
+        p_spec = (1.0 - p_coat) * (0.5 + 0.5 * metal)
+        rest = 1.0 - p_coat - p_spec
+        p_trans = rest * t if self.transmits else 0.0 * t
+        return p_coat, p_spec, rest - p_trans, p_trans
+
+    def _pdf(self, wi, wo, p):
+        _, alpha, _, _, alpha_c, _ = p
+        wi, wo = self._local(wi, wo)
         ci, co = mi.Frame3f.cos_theta(wi), mi.Frame3f.cos_theta(wo)
-        h = dr.normalize(wi + wo)
+        p_coat, p_spec, p_diff, p_trans = self._probabilities(p)
+        wr = mi.Vector3f(wo.x, wo.y, dr.abs(co))
+        h = dr.normalize(wi + wr)
         vh = dr.dot(wi, h)
-        p_spec = 0.5 + 0.5 * metal
         ch = mi.Frame3f.cos_theta(h)
-        spec = _ggx_d(ch, alpha) * ch / (4.0 * dr.abs(vh))
-        pdf = p_spec * spec + (1.0 - p_spec) * co / dr.pi
-        return dr.select((ci > 0) & (co > 0) & (vh > 0), pdf, 0.0)
+        jac = ch / (4.0 * dr.abs(vh))  # Walter et al. 2007: pdf of h (D cos) to pdf of the reflected direction
+        refl = p_spec * _ggx_d(ch, alpha) * jac + p_coat * _ggx_d(ch, alpha_c) * jac + p_diff * co / dr.pi
+        trans = p_trans * _ggx_d(ch, alpha) * jac
+        pdf = dr.select(co > 0, refl, trans)
+        return dr.select((ci > 0) & (co != 0) & (vh > 0), pdf, 0.0)
 
     def sample(self, ctx, si, sample1, sample2, active=True):
-        base, alpha, metal = self._params(si, active)
-        wi = si.wi
-        p_spec = 0.5 + 0.5 * metal
-        pick_spec = sample1 < p_spec
+        p = self._params(si, active)
+        _, alpha, _, _, alpha_c, _ = p
+        wi_world = si.wi
+        wi, _ = self._local(wi_world, wi_world)
+        p_coat, p_spec, p_diff, p_trans = self._probabilities(p)
+        pick_coat = sample1 < p_coat
+        pick_spec = ~pick_coat & (sample1 < p_coat + p_spec)
+        pick_trans = sample1 >= p_coat + p_spec + p_diff
+        a = dr.select(pick_coat, alpha_c, alpha)
         # Walter et al. 2007, eq. 35-36: theta_h with tan^2 = alpha^2 xi / (1 - xi).
         xi = dr.minimum(sample2.x, 0.99999994)
-        tan2 = alpha * alpha * xi / (1.0 - xi)
+        tan2 = a * a * xi / (1.0 - xi)
         cos_h = 1.0 / dr.sqrt(1.0 + tan2)
         sin_h = dr.sqrt(dr.maximum(1.0 - cos_h * cos_h, 0.0))
         phi = 2.0 * dr.pi * sample2.y
         h = mi.Vector3f(sin_h * dr.cos(phi), sin_h * dr.sin(phi), cos_h)
         wo_spec = 2.0 * dr.dot(wi, h) * h - wi
+        wo_trans = mi.Vector3f(wo_spec.x, wo_spec.y, -wo_spec.z)
         wo_diff = mi.warp.square_to_cosine_hemisphere(sample2)
+        wo = dr.select(pick_coat | pick_spec, wo_spec, dr.select(pick_trans, wo_trans, wo_diff))
+        good_side = dr.select(pick_trans, mi.Frame3f.cos_theta(wo) < 0, mi.Frame3f.cos_theta(wo) > 0)
+        # Back to the world's side (the mirror of _local).
+        flip = self.transmits & (mi.Frame3f.cos_theta(wi_world) < 0)
+        wo = mi.Vector3f(wo.x, wo.y, dr.select(flip, -wo.z, wo.z))
         bs = mi.BSDFSample3f()
-        bs.wo = dr.select(pick_spec, wo_spec, wo_diff)
+        bs.wo = wo
         bs.eta = 1.0
-        bs.sampled_component = dr.select(pick_spec, mi.UInt32(0), mi.UInt32(1))
-        bs.sampled_type = dr.select(pick_spec, mi.UInt32(+mi.BSDFFlags.GlossyReflection),
-                                    mi.UInt32(+mi.BSDFFlags.DiffuseReflection))
-        bs.pdf = self._pdf(wi, bs.wo, alpha, metal)
-        ok = active & (mi.Frame3f.cos_theta(wi) > 0) & (mi.Frame3f.cos_theta(bs.wo) > 0) & (bs.pdf > 0)
-        val = self._value(wi, bs.wo, base, alpha, metal)
+        bs.sampled_component = dr.select(pick_coat | pick_spec, mi.UInt32(0),
+                                         dr.select(pick_trans, mi.UInt32(2), mi.UInt32(1)))
+        bs.sampled_type = dr.select(pick_coat | pick_spec, mi.UInt32(+mi.BSDFFlags.GlossyReflection),
+                                    dr.select(pick_trans, mi.UInt32(+mi.BSDFFlags.GlossyTransmission),
+                                              mi.UInt32(+mi.BSDFFlags.DiffuseReflection)))
+        bs.pdf = self._pdf(wi_world, bs.wo, p)
+        ok = active & (mi.Frame3f.cos_theta(wi) > 0) & good_side & (bs.pdf > 0)
+        val = self._value(wi_world, bs.wo, p)
         return bs, dr.select(ok, val / dr.select(ok, bs.pdf, 1.0), 0.0)
 
     def eval(self, ctx, si, wo, active=True):
-        base, alpha, metal = self._params(si, active)
-        return dr.select(active, self._value(si.wi, wo, base, alpha, metal), 0.0)
+        p = self._params(si, active)
+        return dr.select(active, self._value(si.wi, wo, p), 0.0)
 
     def pdf(self, ctx, si, wo, active=True):
-        _, alpha, metal = self._params(si, active)
-        return dr.select(active, self._pdf(si.wi, wo, alpha, metal), 0.0)
+        p = self._params(si, active)
+        return dr.select(active, self._pdf(si.wi, wo, p), 0.0)
 
     def eval_pdf(self, ctx, si, wo, active=True):
-        base, alpha, metal = self._params(si, active)
-        return (dr.select(active, self._value(si.wi, wo, base, alpha, metal), 0.0),
-                dr.select(active, self._pdf(si.wi, wo, alpha, metal), 0.0))
+        p = self._params(si, active)
+        return (dr.select(active, self._value(si.wi, wo, p), 0.0), dr.select(active, self._pdf(si.wi, wo, p), 0.0))
 
     def to_string(self):
         return "GltfMetallicRoughness[f0=%g]" % self.f0

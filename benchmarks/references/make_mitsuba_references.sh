@@ -36,6 +36,8 @@ scenes=(
   "gltf-metals            benchmarks/references/scenes/gltf-metals.json    64 48"
   "gltf-cutout            benchmarks/references/scenes/gltf-cutout.json    64 48"
   "gltf-normal-map        benchmarks/references/scenes/gltf-normal-map.json 64 48"
+  "gltf-clearcoat         benchmarks/references/scenes/gltf-clearcoat.json 64 48"
+  "gltf-transmission      benchmarks/references/scenes/gltf-transmission.json 64 48"
   "suzanne                scenes/suzanne/Suzanne.gltf                      64 48"
   "textured               scenes/textured/textured.json                    64 48"
 )

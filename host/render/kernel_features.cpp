@@ -19,6 +19,10 @@ SceneFeatures scene_features(const Scene& scene) {
         f.emission = f.emission || emits(m);
         for (int t : m.texture) f.textures = f.textures || t != CLP_NO_TEXTURE;
         f.alpha = f.alpha || m.alpha_mode != CLP_ALPHA_OPAQUE;
+        if (m.kind == CLP_MAT_GLTF) {
+            f.clearcoat = f.clearcoat || m.clearcoat > 0;
+            f.transmission = f.transmission || m.transmission > 0;
+        }
     }
     f.vertex_colors = !scene.colors.empty();
     f.lights = !scene.lights.empty();
@@ -43,6 +47,8 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
         f.textures = f.vertex_colors = true;
         // Alpha changes traversal's signature (textures.cl): it follows the scene, even here.
         f.alpha = scene.alpha;
+        f.clearcoat = scene.clearcoat;
+        f.transmission = scene.transmission;
         f.triangle_lights = f.delta_lights = path;
         f.uniform_hemisphere = uniform;
         return f;
@@ -57,6 +63,8 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
     f.textures = scene.textures;
     f.vertex_colors = scene.vertex_colors;
     f.alpha = scene.alpha;
+    f.clearcoat = scene.clearcoat && scene.materials[CLP_MAT_GLTF];
+    f.transmission = scene.transmission && scene.materials[CLP_MAT_GLTF];
     f.uniform_hemisphere = uniform && scene.materials[CLP_MAT_DIFFUSE];  // no diffuse surface: nothing to change
     return f;
 }
@@ -74,6 +82,8 @@ std::string build_options(const KernelFeatures& f) {
     if (f.textures) o += " -DCLP_HAS_TEXTURES";
     if (f.vertex_colors) o += " -DCLP_HAS_VERTEX_COLORS";
     if (f.alpha) o += " -DCLP_HAS_ALPHA";
+    if (f.clearcoat) o += " -DCLP_HAS_CLEARCOAT";
+    if (f.transmission) o += " -DCLP_HAS_TRANSMISSION";
     if (f.flat_accel) o += " -DCLP_ACCEL_FLAT";
     if (f.uniform_hemisphere) o += " -DCLP_UNIFORM_HEMISPHERE";
     o += " -DCLP_INTEGRATOR=" + std::to_string(f.integrator) + "u";

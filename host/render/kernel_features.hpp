@@ -25,6 +25,8 @@ struct KernelFeatures {
     bool textures = false;       // some material maps a texture (CLP_HAS_TEXTURES)
     bool vertex_colors = false;  // per-vertex colours multiply base colours (CLP_HAS_VERTEX_COLORS)
     bool alpha = false;          // MASK or BLEND coverage is tested in traversal (CLP_HAS_ALPHA)
+    bool clearcoat = false;      // a glTF material has a clear coat (CLP_HAS_CLEARCOAT)
+    bool transmission = false;   // a glTF material transmits (CLP_HAS_TRANSMISSION)
     std::uint32_t integrator = CLP_INTEGRATOR_PATH;
     std::uint32_t max_depth = 16;
 
@@ -36,12 +38,15 @@ struct SceneFeatures {
     std::array<bool, CLP_MAT_KIND_COUNT> materials{};  // kinds some triangle uses
     bool emission = false, lights = false, environment = false, environment_map = false, normals = false;
     bool textures = false, vertex_colors = false, alpha = false;
+    bool clearcoat = false, transmission = false;  // glTF layers (KHR_materials_clearcoat, _transmission)
 };
 SceneFeatures scene_features(const Scene& scene);
 
 // What this scene, rendered with these settings, uses. With settings.all_features
 // every feature is on, whatever the scene holds, except alpha, which follows
-// the scene (it changes traversal's arguments, kernels/textures.cl).
+// the scene (it changes traversal's arguments, kernels/textures.cl), and the
+// glTF layers, which follow it too (they change the BSDF's arguments and
+// cost a shading kernel registers that no other scene should pay).
 KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings& settings);
 
 // "-cl-std=CL1.2 -DCLP_HAS_MAT_DIFFUSE -DCLP_HAS_EMISSION ... -DCLP_INTEGRATOR=0u -DCLP_MAX_DEPTH=16u"

@@ -41,6 +41,9 @@ const std::vector<SceneSwitch>& scene_switches() {
         v.push_back({"textures", [](SceneFeatures& f) { f.textures = true; }});
         v.push_back({"vertex-colors", [](SceneFeatures& f) { f.vertex_colors = true; }});
         v.push_back({"alpha", [](SceneFeatures& f) { f.alpha = true; }});
+        // The glTF layers exist only on glTF materials.
+        v.push_back({"clearcoat", [](SceneFeatures& f) { f.materials[CLP_MAT_GLTF] = f.clearcoat = true; }});
+        v.push_back({"transmission", [](SceneFeatures& f) { f.materials[CLP_MAT_GLTF] = f.transmission = true; }});
         return v;
     }();
     return s;
@@ -166,7 +169,11 @@ std::vector<ProgramSpec> scene_programs(const NamedSceneFeatures& scene, KernelC
 std::vector<ProgramSpec> covering_programs(const std::vector<NamedSceneFeatures>& scenes, KernelCode code) {
     ProgramList list(code);
     const RenderSettings defaults;
-    const SceneFeatures all = every_scene_feature();
+    // The glTF layers, as alpha, follow the scene even with every feature
+    // compiled in (render/kernel_features.hpp): programs with them and without.
+    const SceneFeatures all_layers = every_scene_feature();
+    SceneFeatures all = all_layers;
+    all.clearcoat = all.transmission = false;
     SceneFeatures all_opaque = all;
     all_opaque.alpha = false;
 
@@ -178,6 +185,11 @@ std::vector<ProgramSpec> covering_programs(const std::vector<NamedSceneFeatures>
         const std::string n = integrator_name(i);
         list.add_render(n + "-all", all_opaque, s, n + " integrator, every feature");
         list.add_render(n + "-all-alpha", all, s, n + " integrator, every feature and alpha");
+    }
+    {
+        RenderSettings s = defaults;
+        s.all_features = true;
+        list.add_render("path-all-layers", all_layers, s, "path integrator, every feature, alpha and the glTF layers");
     }
     // Each feature alone (over diffuse, which every scene but a one-material one has),
     // and each material kind alone.
@@ -196,7 +208,7 @@ std::vector<ProgramSpec> covering_programs(const std::vector<NamedSceneFeatures>
     }
     // Every feature a scene can hold, switched on as a scene would: the
     // program --all-features compiles (tests/render/kernel_programs_test.cpp).
-    list.add_render("path-every-scene-feature", all, defaults, "every scene feature");
+    list.add_render("path-every-scene-feature", all_layers, defaults, "every scene feature");
     // The estimator and structure choices that are compiled in.
     for (const bool everything : {false, true}) {
         const SceneFeatures f = everything ? all_opaque : diffuse_only();
@@ -223,6 +235,7 @@ std::vector<ProgramSpec> covering_programs(const std::vector<NamedSceneFeatures>
         s.all_features = true;
         list.add_wavefront(n + "-all", all_opaque, s, "wavefront " + n + ", every feature");
         list.add_wavefront(n + "-all-alpha", all, s, "wavefront " + n + ", every feature and alpha");
+        list.add_wavefront(n + "-all-layers", all_layers, s, "wavefront " + n + ", every feature, alpha and the glTF layers");
         s.accel = Accel::Flat;
         list.add_wavefront(n + "-flat-all", all_opaque, s, "wavefront " + n + ", flat object list, every feature");
     }

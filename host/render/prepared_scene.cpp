@@ -78,7 +78,8 @@ std::shared_ptr<const PreparedScene> prepare_scene(const Scene& scene, const Ren
 
     p->triangle_material = scene.triangle_material;
     p->materials.assign(scene.materials.begin(), scene.materials.end());  // the core records
-    if (sum.features.textures || sum.features.alpha)  // else no kernel reads them (kernels/textures.cl)
+    if (sum.features.textures || sum.features.alpha || sum.features.clearcoat ||
+        sum.features.transmission)  // else no kernel reads them (kernels/textures.cl)
         p->material_ext.assign(scene.materials.begin(), scene.materials.end());
     p->normals = scene.normals;
     p->lights = std::move(lights.lights);

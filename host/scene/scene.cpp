@@ -98,6 +98,7 @@ SceneMaterial base_material() {
     m.alpha = 1;
     m.alpha_cutoff = 0.5f;
     m.normal_scale = 1;
+    m.clearcoat_normal_scale = 1;
     m.ior = 1.5f;
     return m;
 }

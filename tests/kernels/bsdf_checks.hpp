@@ -67,13 +67,14 @@ inline glm::vec3 from_angle(double theta_deg) {
 // hemisphere; with `sphere`, transmitting ones over the whole sphere, on a
 // finer sub-grid: refraction compresses the transmitted lobe, and the
 // midpoint rule on the coarser grid mis-integrates it.
-inline test::ChiSquare chi_square_of(const Material& m, const Material& pdf_of, double theta_deg, bool sphere = false,
-                                     cl_program program = test::probe_program()) {
+// sample_fn(wo, n) draws n samples; pdf_fn(wos, wis) evaluates (f cos, pdf).
+template <class SampleFn, class PdfFn>
+test::ChiSquare chi_square_by(SampleFn sample_fn, PdfFn pdf_fn, double theta_deg, bool sphere) {
     const int nt = sphere ? 40 : 20, nphi = 40, sub = sphere ? 16 : 8;
     const double theta_max = sphere ? kPi : kPi / 2;
     const std::uint32_t n = 200000;
     const glm::vec3 wo = from_angle(theta_deg);
-    const Samples s = sample(m, wo, n, 7, program);
+    const Samples s = sample_fn(wo, n);
     std::vector<double> observed(nt * nphi + 1, 0.0);
     for (const auto& w : s.wi_pdf) {
         if (w.s[3] < 0) {
@@ -101,7 +102,7 @@ inline test::ChiSquare chi_square_of(const Material& m, const Material& pdf_of, 
                                        float(std::cos(theta)))));
             area.push_back(std::sin(theta) * dt * dp);
         }
-    const auto e = eval(pdf_of, wos, wis, program);
+    const auto e = pdf_fn(wos, wis);
     std::vector<double> expected(nt * nphi + 1, 0.0);
     double total = 0;
     for (int it = 0; it < nt * sub; ++it)
@@ -115,6 +116,15 @@ inline test::ChiSquare chi_square_of(const Material& m, const Material& pdf_of, 
     return test::chi_square(observed, expected);
 }
 
+inline test::ChiSquare chi_square_of(const Material& m, const Material& pdf_of, double theta_deg, bool sphere = false,
+                                     cl_program program = test::probe_program()) {
+    return chi_square_by([&](glm::vec3 wo, std::uint32_t n) { return sample(m, wo, n, 7, program); },
+                         [&](const std::vector<cl_float4>& wos, const std::vector<cl_float4>& wis) {
+                             return eval(pdf_of, wos, wis, program);
+                         },
+                         theta_deg, sphere);
+}
+
 // Sampling m against its own pdf: passes when the p-value exceeds alpha.
 inline void chi_square_test(const Material& m, double theta_deg, double alpha, bool sphere = false,
                             cl_program program = test::probe_program()) {
@@ -123,8 +133,9 @@ inline void chi_square_test(const Material& m, double theta_deg, double alpha, b
 }
 
 // For every non-delta sample, weight = eval / pdf, as one definition must give.
-inline void expect_weight_is_eval_over_pdf(const Material& m, glm::vec3 wo, cl_program program = test::probe_program()) {
-    const Samples s = sample(m, wo, 2000, 7, program);
+template <class SampleFn, class EvalFn>
+void expect_weight_is_eval_over_pdf_by(SampleFn sample_fn, EvalFn eval_fn, glm::vec3 wo) {
+    const Samples s = sample_fn(wo, 2000);
     std::vector<cl_float4> wos, wis;
     for (const auto& w : s.wi_pdf)
         if (w.s[3] > 0) {
@@ -132,7 +143,7 @@ inline void expect_weight_is_eval_over_pdf(const Material& m, glm::vec3 wo, cl_p
             wis.push_back(w);
         }
     ASSERT_GT(wis.size(), 1000u) << "most samples must succeed";
-    const auto e = eval(m, wos, wis, program);
+    const auto e = eval_fn(wos, wis);
     std::size_t j = 0;
     for (std::size_t i = 0; i < s.wi_pdf.size(); ++i) {
         if (!(s.wi_pdf[i].s[3] > 0)) continue;
@@ -144,6 +155,14 @@ inline void expect_weight_is_eval_over_pdf(const Material& m, glm::vec3 wo, cl_p
         }
         ++j;
     }
+}
+
+inline void expect_weight_is_eval_over_pdf(const Material& m, glm::vec3 wo, cl_program program = test::probe_program()) {
+    expect_weight_is_eval_over_pdf_by([&](glm::vec3 w, std::uint32_t n) { return sample(m, w, n, 7, program); },
+                                      [&](const std::vector<cl_float4>& wos, const std::vector<cl_float4>& wis) {
+                                          return eval(m, wos, wis, program);
+                                      },
+                                      wo);
 }
 
 

@@ -167,6 +167,51 @@ kernel void probe_brute(global const TriVerts* tris, uint tri_count, global cons
 /* Samples material m for the fixed direction wo in a frame where the geometric
  * and shading normals are both +z. wi_pdf: (wi, pdf), pdf -1 when the sample
  * ended the path; weight: (f cos / pdf, delta). */
+#ifdef CLP_GLTF_LAYERS
+/* Programs with the glTF layers: the plain probes pass none (no coat, no
+ * transmission), probe_layered_* the ones given, in the frame of normal +z. */
+static inline GltfLayers probe_layers(float4 p, float4 coat_n) {
+    GltfLayers l;
+    l.clearcoat = p.x;
+    l.coat_roughness = p.y;
+    l.transmission = p.z;
+    l.coat_n = normalize(coat_n.xyz);
+    return l;
+}
+#define CLP_PROBE_NO_LAYERS , &no_layers
+#define CLP_PROBE_DECLARE_NO_LAYERS GltfLayers no_layers = probe_layers((float4)(0.0f), (float4)(0.0f, 0.0f, 1.0f, 0.0f));
+
+kernel void probe_layered_sample(global const Material* m, float4 layers, float4 coat_n, float wox, float woy, float woz,
+                                 uint count, uint seed, global float4* wi_pdf, global float4* weight) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    Rng r = rng_seed(i, 0, seed);
+    float3 n = (float3)(0.0f, 0.0f, 1.0f);
+    float u1 = rng_next(&r), u2 = rng_next(&r), u3 = rng_next(&r);
+    BsdfSample s;
+    Material mp = *m;
+    GltfLayers l = probe_layers(layers, coat_n);
+    int ok = material_sample(&mp, n, n, (float3)(wox, woy, woz), u1, u2, u3, &s, &l);
+    wi_pdf[i] = ok ? (float4)(s.wi, s.pdf) : (float4)(0.0f, 0.0f, 0.0f, -1.0f);
+    weight[i] = ok ? (float4)(s.weight, (float)s.delta) : (float4)(0.0f);
+}
+
+kernel void probe_layered_eval(global const Material* m, float4 layers, float4 coat_n, uint count, global const float4* wo,
+                               global const float4* wi, global float4* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    float3 n = (float3)(0.0f, 0.0f, 1.0f);
+    float pdf;
+    Material mp = *m;
+    GltfLayers l = probe_layers(layers, coat_n);
+    float3 f = material_eval(&mp, n, n, wo[i].xyz, wi[i].xyz, &pdf, &l);
+    out[i] = (float4)(f, pdf);
+}
+#else
+#define CLP_PROBE_NO_LAYERS
+#define CLP_PROBE_DECLARE_NO_LAYERS
+#endif
+
 kernel void probe_bsdf_sample(global const Material* m, float wox, float woy, float woz, uint count, uint seed,
                               global float4* wi_pdf, global float4* weight) {
     uint i = get_global_id(0);
@@ -175,9 +220,10 @@ kernel void probe_bsdf_sample(global const Material* m, float wox, float woy, fl
     float3 n = (float3)(0.0f, 0.0f, 1.0f);
     float u1 = rng_next(&r), u2 = rng_next(&r), u3 = rng_next(&r);
     BsdfSample s;
+    CLP_PROBE_DECLARE_NO_LAYERS
 #ifdef CLP_SURFACE_PARAMS
     Material mp = *m; /* materials are private copies in programs with textures (textures.cl) */
-    int ok = material_sample(&mp, n, n, (float3)(wox, woy, woz), u1, u2, u3, &s);
+    int ok = material_sample(&mp, n, n, (float3)(wox, woy, woz), u1, u2, u3, &s CLP_PROBE_NO_LAYERS);
 #else
     int ok = material_sample(m, n, n, (float3)(wox, woy, woz), u1, u2, u3, &s);
 #endif
@@ -192,9 +238,10 @@ kernel void probe_bsdf_eval(global const Material* m, uint count, global const f
     if (i >= count) return;
     float3 n = (float3)(0.0f, 0.0f, 1.0f);
     float pdf;
+    CLP_PROBE_DECLARE_NO_LAYERS
 #ifdef CLP_SURFACE_PARAMS
     Material mp = *m;
-    float3 f = material_eval(&mp, n, n, wo[i].xyz, wi[i].xyz, &pdf);
+    float3 f = material_eval(&mp, n, n, wo[i].xyz, wi[i].xyz, &pdf CLP_PROBE_NO_LAYERS);
 #else
     float3 f = material_eval(m, n, n, wo[i].xyz, wi[i].xyz, &pdf);
 #endif

@@ -18,7 +18,8 @@
     F(Material, albedo) F(Material, kind) F(Material, emission) F(Material, flags) F(Material, roughness) \
     F(Material, ior) F(Material, metallic) F(Material, pad0) \
     F(MaterialExt, texture) F(MaterialExt, alpha) F(MaterialExt, alpha_mode) F(MaterialExt, alpha_cutoff) \
-    F(MaterialExt, normal_scale) \
+    F(MaterialExt, normal_scale) F(MaterialExt, clearcoat) F(MaterialExt, clearcoat_roughness) \
+    F(MaterialExt, clearcoat_normal_scale) F(MaterialExt, transmission) \
     F(Light, a) F(Light, type) F(Light, b) F(Light, flags) F(Light, c) F(Light, cos_outer) F(Light, L) \
     F(Light, cos_inner) \
     F(AliasEntry, prob) F(AliasEntry, alias) F(AliasEntry, pmf) F(AliasEntry, pad) \

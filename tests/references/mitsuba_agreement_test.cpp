@@ -108,6 +108,10 @@ const std::vector<Entry>& entries() {
          "glTF alpha MASK cut-out (texture alpha), seen and casting light through", 16},
         {"gltf-normal-map", "benchmarks/references/scenes/gltf-normal-map.json",
          "glTF material with a tangent-space normal map (scale 0.8)", 16},
+        {"gltf-clearcoat", "benchmarks/references/scenes/gltf-clearcoat.json",
+         "glTF KHR_materials_clearcoat: coat weight and roughness textures over plastic; a smooth coat over metal", 16},
+        {"gltf-transmission", "benchmarks/references/scenes/gltf-transmission.json",
+         "glTF KHR_materials_transmission, thin-walled: rough clear pane; tinted pane with a transmission texture", 16},
         {"suzanne", "scenes/suzanne/Suzanne.gltf",
          "a bare glTF model: base colour and metallic-roughness textures, the presentation's sky, sun and ground", 16},
         {"textured", "scenes/textured/textured.json",
@@ -327,6 +331,26 @@ TEST(MitsubaAgreementControl, RejectsMetalWithoutItsRoughnessTexture) {
     });
     const auto px = test::pixel_agreement(r.runs, r.ref, 0.01, 0.9975, kRounding);
     std::fprintf(stderr, "[ control ] gltf-metals, metallic-roughness textures left out: %s\n", px.describe().c_str());
+    EXPECT_FALSE(px.ok());
+}
+
+// (The coat's textures alone change too few pixels of this scene, by too
+// little, for its per-pixel test to see them left out: the coat itself.)
+TEST(MitsubaAgreementControl, RejectsSurfacesWithoutTheirCoat) {
+    const Rendered r = render_entry(entry("gltf-clearcoat"), [](Scene& s) {
+        for (auto& m : s.materials) m.clearcoat = 0;
+    });
+    const auto px = test::pixel_agreement(r.runs, r.ref, 0.01, 0.9975, kRounding);
+    std::fprintf(stderr, "[ control ] gltf-clearcoat, the coats left out: %s\n", px.describe().c_str());
+    EXPECT_FALSE(px.ok());
+}
+
+TEST(MitsubaAgreementControl, RejectsAPaneWithoutItsTransmissionTexture) {
+    const Rendered r = render_entry(entry("gltf-transmission"), [](Scene& s) {
+        for (auto& m : s.materials) m.texture[CLP_TEX_TRANSMISSION] = CLP_NO_TEXTURE;
+    });
+    const auto px = test::pixel_agreement(r.runs, r.ref, 0.01, 0.9975, kRounding);
+    std::fprintf(stderr, "[ control ] gltf-transmission, transmission texture left out: %s\n", px.describe().c_str());
     EXPECT_FALSE(px.ok());
 }
 

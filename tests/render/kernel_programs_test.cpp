@@ -93,19 +93,24 @@ TEST(KernelPrograms, CoveringSetHasEveryIntegratorEveryFeatureAloneAndBothRayBat
 
 // Every feature a scene can hold is switched by the covering set's list: all
 // of them on, as a scene would have them, gives the program that
-// --all-features compiles (with alpha). A field added to SceneFeatures that
-// all_features turns on and the list misses fails here.
+// --all-features compiles (with alpha and the glTF layers, which follow the
+// scene). A field added to SceneFeatures that all_features turns on and the
+// list misses fails here.
 TEST(KernelPrograms, EverySceneFeatureOnIsTheAllFeaturesProgram) {
     const auto programs = covering_programs({}, KernelCode::Cpu);
     const ProgramSpec* all = nullptr;
     const ProgramSpec* switched = nullptr;
     for (const auto& p : programs) {
-        if (p.name == "path-all-alpha") all = &p;
+        if (p.name == "path-all-layers") all = &p;
         if (p.covers.find("every scene feature") != std::string::npos) switched = &p;
     }
     ASSERT_TRUE(all && switched);
-    EXPECT_EQ(switched->name, "path-all-alpha") << switched->options << "\nwhere --all-features gives\n"
-                                                << all->options;
+    EXPECT_EQ(switched->name, "path-all-layers") << switched->options << "\nwhere --all-features gives\n"
+                                                 << all->options;
+    EXPECT_TRUE(has_define(all->options, "CLP_HAS_CLEARCOAT") && has_define(all->options, "CLP_HAS_TRANSMISSION"));
+    // ... and the plain all-features programs stay without the layers.
+    for (const auto& p : programs)
+        if (p.name == "path-all-alpha" || p.name == "wf-path-all") EXPECT_FALSE(has_define(p.options, "CLP_HAS_CLEARCOAT")) << p.name;
 }
 
 // Every CLP_HAS_* switch the kernels test is on in some program of the set and

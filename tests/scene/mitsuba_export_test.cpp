@@ -206,6 +206,26 @@ TEST(MitsubaExport, GltfMaterialsAndTextures) {
     EXPECT_NEAR(bumpy["bsdf_0_front"]["normalmap"]["clpath_texture"]["normal_scale"].get<double>(), 0.8, 1e-6);
     EXPECT_NEAR(bumpy["bsdf_1_back"]["normalmap"]["clpath_texture"]["normal_scale"].get<double>(), -0.8, 1e-6);
     EXPECT_EQ(bumpy["bsdf_0_front"]["bsdf"]["type"], "gltf_metallic_roughness");
+
+    // The glTF layers: the plugin's parameters; a transmitting BSDF is two-sided itself.
+    const Scene cc = load_scene(repo_file("benchmarks/references/scenes/gltf-clearcoat.json"));
+    const json coat = parse(export_mitsuba_scene(cc, "cc", "test")).doc["scene"];
+    const json& stripes = entry(coat, "bsdf-", "coat-stripes");
+    EXPECT_EQ(stripes["type"], "twosided");
+    EXPECT_EQ(stripes["bsdf"]["type"], "gltf_metallic_roughness");
+    EXPECT_EQ(stripes["bsdf"]["clearcoat"]["clpath_texture"]["channels"], "r");
+    EXPECT_EQ(stripes["bsdf"]["clearcoat_roughness"]["clpath_texture"]["channels"], "g");
+    EXPECT_NEAR(stripes["bsdf"]["clearcoat_roughness"]["clpath_texture"]["scale"].get<double>(), 0.3, 1e-6);
+    const json& metal = entry(coat, "bsdf-", "coated-metal")["bsdf"];
+    EXPECT_EQ(metal["type"], "gltf_metallic_roughness") << "a coated metal is not principled's metal";
+    EXPECT_NEAR(metal["clearcoat_roughness"].get<double>(), 0.05, 1e-6);
+    const Scene tr = load_scene(repo_file("benchmarks/references/scenes/gltf-transmission.json"));
+    const json trans = parse(export_mitsuba_scene(tr, "tr", "test")).doc["scene"];
+    const json& glass = entry(trans, "bsdf-", "thin-glass");
+    EXPECT_EQ(glass["type"], "gltf_metallic_roughness");
+    EXPECT_EQ(glass["transmits"], true);
+    EXPECT_NEAR(glass["transmission"].get<double>(), 1.0, 1e-6);
+    EXPECT_EQ(entry(trans, "bsdf-", "tinted-stripes")["transmission"]["clpath_texture"]["channels"], "r");
 }
 
 // What Mitsuba would be given differently is refused, naming the material.
@@ -223,6 +243,18 @@ TEST(MitsubaExport, RefusesWhatMitsubaWouldModelDifferently) {
     wraps.textures.at(0).wrap_t = CLP_WRAP_CLAMP;
     EXPECT_THROW(export_mitsuba_scene(wraps, "x", "test"), Error);
     EXPECT_NO_THROW(export_mitsuba_scene(n, "x", "test"));
+    // A coat with its own normal map; transmission with a normal map.
+    Scene coat_normal = n;
+    for (auto& m : coat_normal.materials)
+        if (m.kind == CLP_MAT_GLTF) {
+            m.clearcoat = 1;
+            m.texture[CLP_TEX_CLEARCOAT_NORMAL] = m.texture[CLP_TEX_NORMAL];
+        }
+    EXPECT_THROW(export_mitsuba_scene(coat_normal, "x", "test"), Error);
+    Scene transmits = n;
+    for (auto& m : transmits.materials)
+        if (m.kind == CLP_MAT_GLTF) m.transmission = 1;
+    EXPECT_THROW(export_mitsuba_scene(transmits, "x", "test"), Error);
 }
 
 TEST(MitsubaExport, RefusesAnEmptyScene) {

@@ -139,16 +139,40 @@ std::string mitsuba_gltf_bsdf(const Scene& scene, std::uint32_t mi, const std::s
         rough = bitmap(scene, i, "g", false, num(m.roughness), tex);
         metal = bitmap(scene, i, "b", false, num(m.metallic), tex);
     }
+    // The layers: factors times their textures (weight R, roughness G, transmission R).
+    const bool coat = m.clearcoat > 0, transmits = m.transmission > 0;
+    std::string layers;
+    if (coat) {
+        if (has(m, CLP_TEX_CLEARCOAT_NORMAL))
+            throw Error("material '" + name + "': a clear coat with its own normal map (Mitsuba's normalmap bends "
+                        "the whole BSDF, not one layer)");
+        layers += ", \"clearcoat\": " + (has(m, CLP_TEX_CLEARCOAT)
+                                             ? bitmap(scene, m.texture[CLP_TEX_CLEARCOAT], "r", false, num(m.clearcoat), tex)
+                                             : num(m.clearcoat));
+        layers += ", \"clearcoat_roughness\": " +
+                  (has(m, CLP_TEX_CLEARCOAT_ROUGHNESS)
+                       ? bitmap(scene, m.texture[CLP_TEX_CLEARCOAT_ROUGHNESS], "g", false, num(m.clearcoat_roughness), tex)
+                       : num(m.clearcoat_roughness));
+    }
+    if (transmits) {
+        if (has(m, CLP_TEX_NORMAL))
+            throw Error("material '" + name + "': transmission with a normal map (Mitsuba's twosided, which the "
+                        "normal map's export needs, takes no transmitting BSDF)");
+        layers += ", \"transmits\": true, \"transmission\": " +
+                  (has(m, CLP_TEX_TRANSMISSION)
+                       ? bitmap(scene, m.texture[CLP_TEX_TRANSMISSION], "r", false, num(m.transmission), tex)
+                       : num(m.transmission));
+    }
     // principled clamps alpha at 1e-4, clpath at 1e-3 (CLP_SMOOTH_ALPHA):
     // principled only where that never matters.
     std::string b;
-    if (metal_lo >= 1 && rough_lo * rough_lo >= 1e-3)
+    if (metal_lo >= 1 && rough_lo * rough_lo >= 1e-3 && layers.empty())
         b = "{\"type\": \"principled\", \"base_color\": " + base + ", \"metallic\": 1.0, \"roughness\": " + rough +
             ", \"specular\": 0.5, \"spec_tint\": 0.0, \"anisotropic\": 0.0, \"sheen\": 0.0, \"clearcoat\": 0.0, "
             "\"spec_trans\": 0.0}";
     else
         b = "{\"type\": \"gltf_metallic_roughness\", \"base_color\": " + base + ", \"roughness\": " + rough +
-            ", \"metallic\": " + metal + ", \"ior\": " + num(m.ior) + "}";
+            ", \"metallic\": " + metal + ", \"ior\": " + num(m.ior) + layers + "}";
     if (has(m, CLP_TEX_NORMAL)) {
         // normalmap reads its normal in the hit's shading frame, and twosided
         // hands the back face to its second BSDF with the directions mirrored
@@ -164,7 +188,7 @@ std::string mitsuba_gltf_bsdf(const Scene& scene, std::uint32_t mi, const std::s
                    bitmap(scene, t, "rgb", false, "1", tex, m.normal_scale * flip) + ", \"bsdf\": " + b + "}";
         };
         b = "{\"type\": \"twosided\", \"bsdf_0_front\": " + mapped(1) + ", \"bsdf_1_back\": " + mapped(-1) + "}";
-    } else {
+    } else if (!transmits) {  // a transmitting one is two-sided itself (benchmarks/references/gltf_bsdf.py)
         b = "{\"type\": \"twosided\", \"bsdf\": " + b + "}";
     }
     if (mitsuba_gltf_has_cutout(m)) {

@@ -45,6 +45,37 @@ float extension_number(const tinygltf::ExtensionMap& ext, const char* name, cons
     return float(it->second.Get(key).GetNumberAsDouble());
 }
 
+// A texture reference inside an extension's object (a glTF textureInfo:
+// index, texCoord, scale for normal maps, its own extensions), which
+// tinygltf leaves as JSON.
+struct ExtTexture {
+    int index = -1, texcoord = 0;
+    double scale = 1;
+    tinygltf::ExtensionMap extensions;
+};
+ExtTexture ext_texture(const Source& src, const tinygltf::Value& ext, const char* key, const std::string& path) {
+    ExtTexture t;
+    if (!ext.Has(key)) return t;
+    const tinygltf::Value& v = ext.Get(key);
+    if (!v.IsObject() || !v.Has("index") || !v.Get("index").IsInt())
+        src.fail(path, "must be a texture reference with an integer 'index'");
+    t.index = v.Get("index").GetNumberAsInt();
+    if (t.index < 0) src.fail(path + ".index", "must be non-negative, got " + std::to_string(t.index));
+    if (v.Has("texCoord") && v.Get("texCoord").IsInt()) t.texcoord = v.Get("texCoord").GetNumberAsInt();
+    if (v.Has("scale") && v.Get("scale").IsNumber()) t.scale = v.Get("scale").GetNumberAsDouble();
+    if (v.Has("extensions") && v.Get("extensions").IsObject())
+        for (const auto& k : v.Get("extensions").Keys()) t.extensions[k] = v.Get("extensions").Get(k);
+    return t;
+}
+
+// A factor of an extension's object, default when absent, in [0, 1].
+float ext_factor(const Source& src, const tinygltf::Value& ext, const char* key, float fallback, const std::string& path) {
+    if (!ext.Has(key)) return fallback;
+    const tinygltf::Value& v = ext.Get(key);
+    if (!v.IsNumber()) src.fail(path, "must be a number");
+    return factor(src, v.GetNumberAsDouble(), path, 0, 1);
+}
+
 // KHR_texture_transform's matrix, uv' = T * R * S * uv (the extension's
 // specification, with its rotation's sign), or nothing when absent.
 std::optional<glm::mat3> uv_transform(const tinygltf::ExtensionMap& ext) {
@@ -164,6 +195,43 @@ public:
         m.texture[CLP_TEX_EMISSION] = texture(gm.emissiveTexture.index, gm.emissiveTexture.texCoord, p + ".emissiveTexture");
         m.normal_scale = float(gm.normalTexture.scale);
         if (!std::isfinite(m.normal_scale)) src_.fail(p + ".normalTexture.scale", "must be finite");
+        // The layers (clear coat, transmission): their textures join the material's (transforms below).
+        std::vector<std::pair<ExtTexture, std::string>> layer_textures;
+        auto layer_texture = [&](const tinygltf::Value& ext, const char* key, unsigned slot, const std::string& ep) {
+            ExtTexture t = ext_texture(src_, ext, key, ep + "." + key);
+            m.texture[slot] = texture(t.index, t.texcoord, ep + "." + key);
+            if (t.index >= 0) layer_textures.emplace_back(t, ep + "." + key);
+            return t;
+        };
+        if (auto it = gm.extensions.find("KHR_materials_clearcoat"); it != gm.extensions.end()) {
+            const std::string ep = p + ".extensions.KHR_materials_clearcoat";
+            if (!it->second.IsObject()) src_.fail(ep, "must be an object");
+            m.clearcoat = ext_factor(src_, it->second, "clearcoatFactor", 0, ep + ".clearcoatFactor");
+            m.clearcoat_roughness = ext_factor(src_, it->second, "clearcoatRoughnessFactor", 0, ep + ".clearcoatRoughnessFactor");
+            layer_texture(it->second, "clearcoatTexture", CLP_TEX_CLEARCOAT, ep);
+            layer_texture(it->second, "clearcoatRoughnessTexture", CLP_TEX_CLEARCOAT_ROUGHNESS, ep);
+            const ExtTexture n = layer_texture(it->second, "clearcoatNormalTexture", CLP_TEX_CLEARCOAT_NORMAL, ep);
+            m.clearcoat_normal_scale = float(n.scale);
+            if (!std::isfinite(m.clearcoat_normal_scale)) src_.fail(ep + ".clearcoatNormalTexture.scale", "must be finite");
+            if (m.clearcoat == 0) {  // no coat: its maps would only cost (the spec's factor multiplies them)
+                for (unsigned s : {CLP_TEX_CLEARCOAT, CLP_TEX_CLEARCOAT_ROUGHNESS, CLP_TEX_CLEARCOAT_NORMAL})
+                    m.texture[s] = CLP_NO_TEXTURE;
+                layer_textures.clear();
+            }
+        }
+        if (auto it = gm.extensions.find("KHR_materials_transmission"); it != gm.extensions.end()) {
+            const std::string ep = p + ".extensions.KHR_materials_transmission";
+            if (!it->second.IsObject()) src_.fail(ep, "must be an object");
+            m.transmission = ext_factor(src_, it->second, "transmissionFactor", 0, ep + ".transmissionFactor");
+            const ExtTexture t = layer_texture(it->second, "transmissionTexture", CLP_TEX_TRANSMISSION, ep);
+            if (m.transmission == 0 && t.index >= 0) {
+                m.texture[CLP_TEX_TRANSMISSION] = CLP_NO_TEXTURE;
+                layer_textures.pop_back();
+            }
+            if (gm.extensions.count("KHR_materials_volume"))
+                out_.warnings.push_back(src_.file + ": " + p + ": KHR_materials_volume is not supported; its transmission is "
+                                        "rendered thin-walled (light passes the surface without refracting)");
+        }
         GltfMaterial out{gm.name.empty() ? p : gm.name, m, std::nullopt};
         // One set of texture coordinates per vertex: the first texture's transform
         // is applied to them (quantisers such as gltfpack give every texture of a
@@ -188,6 +256,7 @@ public:
         consider(gm.normalTexture.extensions, gm.normalTexture.index, p + ".normalTexture");
         consider(gm.occlusionTexture.extensions, -1, p + ".occlusionTexture");
         consider(gm.emissiveTexture.extensions, gm.emissiveTexture.index, p + ".emissiveTexture");
+        for (const auto& [t, tp] : layer_textures) consider(t.extensions, t.index, tp);
         out.uv_transform = first;
         return out;
     }

@@ -28,17 +28,17 @@ bool has_version_1_structure(const nlohmann::json& doc) {
 }  // namespace
 
 const std::vector<std::string>& supported_extensions() {
-    static const std::vector<std::string> k = {"EXT_meshopt_compression",      "KHR_draco_mesh_compression",
-                                               "KHR_lights_punctual",          "KHR_materials_emissive_strength",
-                                               "KHR_materials_ior",            "KHR_mesh_quantization",
-                                               "KHR_texture_transform"};
+    static const std::vector<std::string> k = {
+        "EXT_meshopt_compression",    "KHR_draco_mesh_compression",      "KHR_lights_punctual",
+        "KHR_materials_clearcoat",    "KHR_materials_emissive_strength", "KHR_materials_ior",
+        "KHR_materials_transmission", "KHR_mesh_quantization",           "KHR_texture_transform"};
     return k;
 }
 
 const std::vector<std::string>& look_only_extensions() {
     static const std::vector<std::string> k = {
         "KHR_technique_webgl", "KHR_materials_pbrSpecularGlossiness", "KHR_materials_unlit",
-        "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular", "KHR_materials_transmission",
+        "KHR_materials_sheen", "KHR_materials_specular",
         "KHR_materials_volume", "KHR_materials_iridescence", "KHR_materials_anisotropy", "KHR_materials_dispersion",
         "KHR_materials_variants"};
     return k;

@@ -95,6 +95,8 @@ def main():
         ln = math.sqrt(sum(c * c for c in n))
         return tuple(byte(0.5 + 0.5 * c / ln) for c in n)
     png("bumps.png", 16, 16, 3, bumps)
+    # Layer weights (R, linear) in four stripes along u: 0.25, 0.5, 0.75, 1; roughness (G) 0.5 .. 1.
+    png("layer-stripes.png", 16, 4, 3, lambda x, y: (byte(0.25 * (x // 4 + 1)), byte(0.5 + 0.5 * (x // 4) / 3), 0))
 
     def mat(name, **kw):
         m = {"name": name, "pbrMetallicRoughness": {}}
@@ -136,6 +138,29 @@ def main():
     quad("bumps.gltf", 0.8, 0.6, ((0, 2), (0, 1.5)),
          mat("bumpy", metallicFactor=0, roughnessFactor=0.35, baseColorFactor=[0.7, 0.75, 0.8, 1], normal=0,
              normal_scale=0.8), ["bumps.png"], rep)
+    # (e) KHR_materials_clearcoat: a coat of weight and roughness from stripes
+    # over dark red plastic (car paint: the coat dominates); a smooth full coat over a rough metal.
+    quad("coat-stripes.gltf", 0.6, 0.45, ((0, 1), (0, 1)),
+         mat("coat stripes", metallicFactor=0, roughnessFactor=0.6, baseColorFactor=[0.1, 0.02, 0.015, 1],
+             extensions={"KHR_materials_clearcoat": {"clearcoatFactor": 1.0, "clearcoatTexture": {"index": 0},
+                                                     "clearcoatRoughnessFactor": 0.3,
+                                                     "clearcoatRoughnessTexture": {"index": 0}}}),
+         ["layer-stripes.png"], dict(rep, wrapS=CLAMP, wrapT=CLAMP))
+    quad("coated-metal.gltf", 0.6, 0.3, ((0, 1), (0, 1)),
+         mat("coated metal", metallicFactor=1, roughnessFactor=0.5, baseColorFactor=[0.3, 0.45, 0.8, 1],
+             extensions={"KHR_materials_clearcoat": {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.05}}),
+         [], None)
+    # (f) KHR_materials_transmission, thin-walled: rough clear glass, and a
+    # tinted pane whose transmission comes in stripes.
+    quad("thin-glass.gltf", 0.5, 0.45, ((0, 1), (0, 1)),
+         mat("thin glass", metallicFactor=0, roughnessFactor=0.25, baseColorFactor=[0.95, 0.97, 1.0, 1],
+             doubleSided=True, extensions={"KHR_materials_transmission": {"transmissionFactor": 1.0}}),
+         [], None)
+    quad("tinted-stripes.gltf", 0.5, 0.45, ((0, 1), (0, 1)),
+         mat("tinted stripes", metallicFactor=0, roughnessFactor=0.5, baseColorFactor=[0.4, 0.85, 0.5, 1],
+             doubleSided=True, extensions={"KHR_materials_transmission": {"transmissionFactor": 1.0,
+                                                                          "transmissionTexture": {"index": 0}}}),
+         ["layer-stripes.png"], dict(rep, wrapS=CLAMP, wrapT=CLAMP))
 
 
 main()
