@@ -113,4 +113,16 @@ inline std::string gltf_text_error(const std::string& name, const std::string& t
     return error_of([&] { (void)gltf_text_scene(name, text); });
 }
 
+// A texture decoder that needs no image library: "RGBA", then width and
+// height as one byte each, then the texels.
+inline TextureImage fake_rgba_decode(const std::string& bytes, const std::string& name) {
+    if (bytes.size() < 6 || bytes.compare(0, 4, "RGBA") != 0) throw Error(name + ": cannot decode the image: not RGBA");
+    TextureImage t;
+    t.width = (unsigned char)bytes[4];
+    t.height = (unsigned char)bytes[5];
+    t.rgba8.assign(bytes.begin() + 6, bytes.end());
+    if (t.rgba8.size() != std::size_t(t.width) * t.height * 4) throw Error(name + ": cannot decode the image: short");
+    return t;
+}
+
 }  // namespace clpath::test

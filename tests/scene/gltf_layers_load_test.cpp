@@ -14,19 +14,9 @@ using nlohmann::json;
 
 namespace {
 
-// A decoder that needs no image library: "RGBA" then w, h as bytes, then texels.
-TextureImage fake_decode(const std::string& bytes, const std::string& name) {
-    if (bytes.size() < 6 || bytes.compare(0, 4, "RGBA") != 0) throw Error(name + ": cannot decode the image: not RGBA");
-    TextureImage t;
-    t.width = (unsigned char)bytes[4];
-    t.height = (unsigned char)bytes[5];
-    t.rgba8.assign(bytes.begin() + 6, bytes.end());
-    return t;
-}
-
 LoadOptions options(MemoryFiles& f) {
     LoadOptions o = f.options();
-    o.decode_texture = fake_decode;
+    o.decode_texture = fake_rgba_decode;
     o.presentation.ground = false;
     return o;
 }

@@ -17,21 +17,10 @@ using nlohmann::json;
 
 namespace {
 
-// A decoder that needs no image library: "RGBA" then w, h as bytes, then texels.
-TextureImage fake_decode(const std::string& bytes, const std::string& name) {
-    if (bytes.size() < 6 || bytes.compare(0, 4, "RGBA") != 0) throw Error(name + ": cannot decode the image: not RGBA");
-    TextureImage t;
-    t.width = (unsigned char)bytes[4];
-    t.height = (unsigned char)bytes[5];
-    t.rgba8.assign(bytes.begin() + 6, bytes.end());
-    if (t.rgba8.size() != std::size_t(t.width) * t.height * 4) throw Error(name + ": cannot decode the image: short");
-    return t;
-}
-
 struct Files : MemoryFiles {
     LoadOptions opts() const {
         LoadOptions o = options();
-        o.decode_texture = fake_decode;
+        o.decode_texture = fake_rgba_decode;
         // The file's own triangles only: presentation_test.cpp covers the ground.
         o.presentation.ground = false;
         return o;
