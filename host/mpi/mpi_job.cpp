@@ -39,6 +39,29 @@ void add_fixed128(void* in, void* inout, int* len, MPI_Datatype*) {
     for (int i = 0; i < *len; ++i) b[i] += a[i];
 }
 
+// The 128-bit fixed-point sums as an MPI type with their addition, freed on
+// every way out (a failed MPI call throws).
+struct FixedSum {
+    MPI_Datatype type;
+    MPI_Op op;
+    FixedSum() {
+        check(MPI_Op_create(&add_fixed128, 1, &op), "MPI_Op_create");
+        const int rc = MPI_Type_contiguous(int(sizeof(Fixed128)), MPI_BYTE, &type);
+        if (rc != MPI_SUCCESS) MPI_Op_free(&op);
+        check(rc, "MPI_Type_contiguous");
+        MPI_Type_commit(&type);
+    }
+    ~FixedSum() {
+        MPI_Op_free(&op);
+        MPI_Type_free(&type);
+    }
+    FixedSum(const FixedSum&) = delete;
+    FixedSum& operator=(const FixedSum&) = delete;
+};
+
+// Blocks of at most this many sums per call, so that buffers stay small and counts fit an int.
+constexpr std::size_t kFixedBlock = 1 << 20;
+
 }  // namespace
 
 MpiJob::MpiJob(int* argc, char*** argv) {
@@ -138,40 +161,27 @@ void MpiJob::run_chunks(ChunkQueue& queue, DeviceFarm& farm, const std::function
 }
 
 void MpiJob::reduce_film(ExactFilm& film) {
-    MPI_Datatype fixed;
-    check(MPI_Type_contiguous(int(sizeof(Fixed128)), MPI_BYTE, &fixed), "MPI_Type_contiguous");
-    MPI_Type_commit(&fixed);
-    MPI_Op op;
-    check(MPI_Op_create(&add_fixed128, 1, &op), "MPI_Op_create");
-    // In blocks, so that the receive buffer stays small and counts fit an int.
-    constexpr std::size_t kBlock = 1 << 20;
-    std::vector<Fixed128> sum(std::min(kBlock, film.sums().size()));
-    for (std::size_t first = 0; first < film.sums().size(); first += kBlock) {
-        const int n = int(std::min(kBlock, film.sums().size() - first));
-        check(MPI_Reduce(film.sums().data() + first, sum.data(), n, fixed, op, 0, MPI_COMM_WORLD), "MPI_Reduce");
+    const FixedSum fixed;
+    std::vector<Fixed128> sum(std::min(kFixedBlock, film.sums().size()));
+    for (std::size_t first = 0; first < film.sums().size(); first += kFixedBlock) {
+        const int n = int(std::min(kFixedBlock, film.sums().size() - first));
+        check(MPI_Reduce(film.sums().data() + first, sum.data(), n, fixed.type, fixed.op, 0, MPI_COMM_WORLD),
+              "MPI_Reduce");
         if (rank_ == 0) std::copy(sum.begin(), sum.begin() + n, film.sums().begin() + std::ptrdiff_t(first));
     }
     std::uint64_t spp = film.samples_per_pixel(), total = 0;
     check(MPI_Reduce(&spp, &total, 1, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD), "MPI_Reduce");
     if (rank_ == 0) film.set_samples_per_pixel(total);
-    MPI_Op_free(&op);
-    MPI_Type_free(&fixed);
 }
 
 void MpiJob::sum_films(ExactFilm& film) {
-    MPI_Datatype fixed;
-    check(MPI_Type_contiguous(int(sizeof(Fixed128)), MPI_BYTE, &fixed), "MPI_Type_contiguous");
-    MPI_Type_commit(&fixed);
-    MPI_Op op;
-    check(MPI_Op_create(&add_fixed128, 1, &op), "MPI_Op_create");
-    constexpr std::size_t kBlock = 1 << 20;
+    const FixedSum fixed;
     for (std::vector<Fixed128>* v : {&film.sums(), &film.half()})
-        for (std::size_t first = 0; first < v->size(); first += kBlock) {
-            const int n = int(std::min(kBlock, v->size() - first));
-            check(MPI_Allreduce(MPI_IN_PLACE, v->data() + first, n, fixed, op, MPI_COMM_WORLD), "MPI_Allreduce");
+        for (std::size_t first = 0; first < v->size(); first += kFixedBlock) {
+            const int n = int(std::min(kFixedBlock, v->size() - first));
+            check(MPI_Allreduce(MPI_IN_PLACE, v->data() + first, n, fixed.type, fixed.op, MPI_COMM_WORLD),
+                  "MPI_Allreduce");
         }
-    MPI_Op_free(&op);
-    MPI_Type_free(&fixed);
 }
 
 std::vector<DeviceShare> MpiJob::gather_shares(const std::vector<DeviceShare>& local) {
