@@ -246,7 +246,7 @@ int run_render(const RenderOptions& o) {
     const bool show_progress = !o.quiet && lead;
     InterruptFlag interrupt;
     // Progress keeps its own clock, started once the scene is prepared: the
-    // session's starts with the first chunk, and a log should show lines
+    // render_session()'s starts with the first chunk, and a log should show lines
     // while the devices get ready too.
     std::unique_ptr<Progress> progress;
     SessionHooks hooks;

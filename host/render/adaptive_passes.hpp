@@ -1,6 +1,6 @@
 #pragma once
-// The schedule of an adaptive render (render/adaptive.hpp) as the render
-// session runs it: the pass open, its mask, and each pixel's sample count.
+// The schedule of an adaptive render (render/adaptive.hpp) as render_session()
+// (render/render_session.hpp) runs it: the pass open, its mask, and each pixel's sample count.
 // Pass q is chunks [q * kAdaptivePassChunks, (q + 1) * kAdaptivePassChunks)
 // of the plan; its mask is decided from the film holding exactly the passes
 // before it, so it does not depend on which device rendered what.
