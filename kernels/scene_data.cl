@@ -98,6 +98,40 @@ typedef struct {
 #define surface_layers_arg(s)
 #endif
 
+#ifdef CLP_HAS_INSTANCES
+/* An object-space normal in world space: the inverse transpose of the
+ * object-to-world map applied, W^T n with W the world-to-object rows 3-5 of
+ * the instance record im; unit (or zero for a zero n). For the geometric
+ * normal too: a mirroring instance (det M < 0) reverses its triangles'
+ * winding, so the cross product of the moved edges would point inside, but
+ * a flattened copy has two corners swapped back (scene/scene_builder.cpp)
+ * and keeps its outside as the front; W^T n is that normal, whatever det's
+ * sign, and shading sees a mirrored instance as it sees its flattened copy. */
+static inline float3 instance_normal(global const float4* im, float3 n) {
+    return normalize3(n.x * im[3].xyz + n.y * im[4].xyz + n.z * im[5].xyz);
+}
+
+/* The hit point of barycentrics b1, b2 on the object-space triangle v0 v1 v2
+ * of instance im, in world space, with its error bound. The vertices are
+ * moved to world space first, so the point is interpolated exactly as on a
+ * flattened copy (hit_point); each moved vertex is off its exact image by at
+ * most gamma(4) (|M| |v| + |t|) per axis (four terms summed; PBR 3rd ed. bounds
+ * ed., 3.9.4), and a convex combination of the vertices is off by at most
+ * the largest of those, which is added to hit_point's bound. */
+static inline float3 instance_hit_point(global const float4* im, float3 v0, float3 v1, float3 v2, float b1, float b2,
+                                        float3* err) {
+    const float4 r0 = im[0], r1 = im[1], r2 = im[2];
+    const float3 a0 = fabs(r0.xyz), a1 = fabs(r1.xyz), a2 = fabs(r2.xyz);
+    const float3 vmax = fmax(fabs(v0), fmax(fabs(v1), fabs(v2)));
+    const float3 moved = CLP_GAMMA(4) * (float3)(dot(a0, vmax) + fabs(r0.w), dot(a1, vmax) + fabs(r1.w),
+                                                 dot(a2, vmax) + fabs(r2.w));
+    float3 p = hit_point(xform_point(r0, r1, r2, v0), xform_point(r0, r1, r2, v1), xform_point(r0, r1, r2, v2), b1,
+                         b2, err);
+    *err = (*err + moved) * (1.0f + CLP_GAMMA(2)); /* the sum itself rounded */
+    return p;
+}
+#endif
+
 /* The surface a hit found, written to *out (not returned: see no_hit in
  * traverse_leaf.cl). Forced inline on a GPU: the wavefront's shading kernels
  * each recompute it, and kept out of line it is handed back through the
@@ -106,9 +140,18 @@ CLP_GPU_INLINE void surface_at(Surface* out, const SceneData* sc, const Hit* h, 
     Surface s;
     s.tv = &sc->tris[h->tri];
     float3 v0 = load3g(s.tv->v0), v1 = load3g(s.tv->v1), v2 = load3g(s.tv->v2);
+#ifdef CLP_HAS_INSTANCES
+    /* The triangle is in its instance's object space: the point and its
+     * error bound go to world space with the vertices (instance_surface),
+     * the normals with the inverse transpose. */
+    global const float4* im = (global const float4*)&sc->nodes[h->inst];
+    s.ng = instance_normal(im, cross(v1 - v0, v2 - v0));
+    s.p = instance_hit_point(im, v0, v1, v2, h->b1, h->b2, &s.err);
+#else
     s.ng = normalize3(cross(v1 - v0, v2 - v0));
-    s.front = dot(s.ng, d) < 0.0f;
     s.p = hit_point(v0, v1, v2, h->b1, h->b2, &s.err);
+#endif
+    s.front = dot(s.ng, d) < 0.0f;
     uint mi = sc->tri_material[s.tv->prim];
     s.m = &sc->materials[mi];
     s.ns = s.ng;
@@ -116,6 +159,9 @@ CLP_GPU_INLINE void surface_at(Surface* out, const SceneData* sc, const Hit* h, 
     if (sc->fp->scene_flags & CLP_SCENE_NORMALS) {
     global const float* n = sc->normals + 9 * (size_t)s.tv->prim;
     float3 ns = (1.0f - h->b1 - h->b2) * vload3(0, n) + h->b1 * vload3(1, n) + h->b2 * vload3(2, n);
+#ifdef CLP_HAS_INSTANCES
+    if (dot(ns, ns) > 0.0f) ns = instance_normal(im, ns);
+#endif
     float len = length3(ns);
     if (len > 0.0f && isfinite(len)) s.ns = ns / len;
     }

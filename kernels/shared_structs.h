@@ -199,6 +199,33 @@ typedef struct {
  * (traverse_bvh4.cl, occlude_tree): so no more 4-wide nodes than this (host/bvh/wide.cpp). */
 #define CLP_BVH4_MAX_NODES (1 << 29)
 
+/* Instancing (a two-level BVH, host/bvh/instances.hpp), compiled in only
+ * for a scene that places a mesh by instances (-DCLP_HAS_INSTANCES): the node
+ * buffer then holds the top-level 4-wide BVH over the instances' world boxes
+ * from node 0, one Instance record per instance (128 bytes, a node's size,
+ * so the records share the node buffer and no kernel gains an argument), and
+ * every bottom-level BVH (one per mesh, its child indices and leaf ranges
+ * already offset into the shared node and triangle buffers). A top-level
+ * leaf holds exactly one instance: child = ~(the node index of its record).
+ * Geometry placed once stays in one bottom-level BVH under an identity
+ * instance, so every walk is top level, then bottom level.
+ * The matrices are affine 3x4, rows of (m00 m01 m02 t0): p' = M p + t. */
+typedef struct {
+    float object_to_world[12];
+    float world_to_object[12];
+    uint blas_root;   /* node index of the mesh's bottom-level root */
+    uint first_tri;   /* the mesh's first TriVerts (its leaves are already offset by it) */
+    uint first_prim;  /* the mesh's first triangle in the per-triangle buffers (materials, normals) */
+    float det_sign;   /* sign of det(M): -1 for a mirroring instance, whose winding (and so ng) flips */
+    uint mesh;
+    uint pad0, pad1, pad2;
+} Instance;
+/* The top-level tree's binary depth bound, checked by the host: with the
+ * bottom level's it sizes the instanced walk's one stack. */
+#define CLP_TLAS_MAX_DEPTH 32
+#define CLP_TLAS4_MAX_DEPTH (CLP_TLAS_MAX_DEPTH / 2)
+#define CLP_INSTANCE_STACK (3 * (CLP_BVH4_MAX_DEPTH + CLP_TLAS4_MAX_DEPTH) + 1)
+
 /* Triangle as traversal reads it, in BVH leaf order. prim is the index of the
  * triangle in the scene's original order (for material and shading data);
  * light lets a path that hits an emitter find its light-sampling pdf (MIS). */
@@ -361,6 +388,9 @@ typedef struct {
     float t;
     float b1, b2;
     int tri;
+#if defined(__OPENCL_C_VERSION__) && defined(CLP_HAS_INSTANCES)
+    int inst; /* kernels only: the node index of the hit instance's record (Instance), -1 for none */
+#endif
 } Hit;
 
 /* The wavefront integrator's queue lengths (kernels/wavefront.cl): the paths
@@ -412,6 +442,11 @@ CLP_STATIC_ASSERT(sizeof(AliasEntry) == 16, alias_entry_is_16_bytes);
 CLP_STATIC_ASSERT(sizeof(Counters) == 16, counters_is_16_bytes);
 CLP_STATIC_ASSERT(sizeof(AccumPixel) == 32, accum_pixel_is_32_bytes);
 CLP_STATIC_ASSERT(sizeof(BatchRay) == 32, batch_ray_is_32_bytes);
+#if !(defined(__OPENCL_C_VERSION__) && defined(CLP_HAS_INSTANCES))
 CLP_STATIC_ASSERT(sizeof(Hit) == 16, hit_is_16_bytes);
+#endif
+CLP_STATIC_ASSERT(sizeof(Instance) == 128 && sizeof(Instance) == sizeof(Bvh4Node128), instance_is_one_node);
+CLP_STATIC_ASSERT(__builtin_offsetof(Instance, world_to_object) == 48 && __builtin_offsetof(Instance, blas_root) == 96,
+                  instance_rows);
 
 #endif

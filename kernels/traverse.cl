@@ -7,6 +7,8 @@
  *   traverse_flat.cl  with -DCLP_ACCEL_FLAT, the thesis renderer's flat list
  *                     of object boxes in BvhNode64 records (host/bvh/flat.hpp),
  *                     the baseline the BVH is measured against.
+ * With CLP_HAS_INSTANCES (a scene that places meshes by instances) the
+ * 4-wide BVH is two levels, walked by traverse_instances.cl.
  * A new layout is a new file beside them, included and selected below.
  * What every layout shares (the leaf test, the empty hit) is in
  * traverse_leaf.cl.
@@ -30,6 +32,12 @@
 
 #include "traverse_bvh4.cl"
 #include "traverse_flat.cl"
+#ifdef CLP_HAS_INSTANCES
+#ifdef CLP_ACCEL_FLAT
+#error "instances are walked in the 4-wide BVH only (-DCLP_HAS_INSTANCES without -DCLP_ACCEL_FLAT)"
+#endif
+#include "traverse_instances.cl"
+#endif
 
 /* The hit of a ray in (0, tmax), written to *hit: the closest, or with
  * any_hit (shadow rays) the first found; tri -1 for none. *visits (may be
@@ -39,10 +47,18 @@
  * 544 B at sm_90; inlined, 72 and 248). */
 CLP_GPU_INLINE void traverse_bvh(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
                                 const RayPre* r, float tmax, int any_hit, uint* visits CLP_ALPHA_PARAM) {
+#ifdef CLP_HAS_INSTANCES
+    /* Two levels (traverse_instances.cl); hit->inst names the instance. */
+    if (any_hit)
+        CLP_WALK_ASSIGN(hit) instances_walk(CLP_WALK_OUT_ARG(hit) nodes, tris, r, tmax, 1, visits CLP_ALPHA_ARG);
+    else
+        CLP_WALK_ASSIGN(hit) instances_walk(CLP_WALK_OUT_ARG(hit) nodes, tris, r, tmax, 0, visits CLP_ALPHA_ARG);
+#else
     if (any_hit)
         accel_any_hit(hit, nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
     else
         accel_closest_hit(hit, nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
+#endif
 }
 
 #endif

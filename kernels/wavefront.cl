@@ -130,6 +130,9 @@ kernel void wf_trace(CLP_SCENE_PARAMS constant const FrameParams* fp, global con
         Hit h;
         trace_closest(&h, &sc, ray, &rays, 0);
         hits[slot] = (float4)(h.t, h.b1, h.b2, as_float(h.tri));
+#ifdef CLP_HAS_INSTANCES
+        ((global int*)(hits + capacity))[slot] = h.inst; /* after the hits' rows (integrator_program.cpp) */
+#endif
     }
     wf_count(&group_rays, rays, &counters->rays);
 }
@@ -141,6 +144,12 @@ static inline void wf_load_hit(Hit* h, global const float4* hits, uint slot) {
     h->b2 = hv.z;
     h->tri = as_int(hv.w);
 }
+#ifdef CLP_HAS_INSTANCES
+/* The instance of a stored hit: an int per path after the hits' rows (wf_trace). */
+static inline int wf_hit_instance(global const float4* hits, uint capacity, uint slot) {
+    return ((global const int*)(hits + capacity))[slot];
+}
+#endif
 
 /* A path's random state alone (the last field of its direction's row). */
 static inline global uint* wf_rng_state(global float4* paths, uint capacity, uint slot) {
@@ -165,6 +174,9 @@ kernel void wf_shade(CLP_SCENE_PARAMS constant const FrameParams* fp, global flo
     wf_load(&ps, paths, capacity, slot);
     Hit h;
     wf_load_hit(&h, hits, slot);
+#ifdef CLP_HAS_INSTANCES
+    h.inst = wf_hit_instance(hits, capacity, slot);
+#endif
     if (h.tri < 0) {
         path_miss(&sc, &ps);
         wf_store_L(paths, capacity, slot, &ps);
@@ -229,6 +241,9 @@ kernel void wf_connect(CLP_SCENE_PARAMS constant const FrameParams* fp, global f
     const float3 d = paths[CLP_WF_ROW_D * capacity + slot].xyz;
     Hit h;
     wf_load_hit(&h, hits, slot);
+#ifdef CLP_HAS_INSTANCES
+    h.inst = wf_hit_instance(hits, capacity, slot);
+#endif
     Surface s;
     surface_at(&s, &sc, &h, d);
     LightSample ls;
@@ -273,6 +288,9 @@ kernel void wf_scatter(CLP_SCENE_PARAMS constant const FrameParams* fp, global f
     rng.state = as_uint(d.w);
     Hit h;
     wf_load_hit(&h, hits, slot);
+#ifdef CLP_HAS_INSTANCES
+    h.inst = wf_hit_instance(hits, capacity, slot);
+#endif
     Surface s;
     surface_at(&s, &sc, &h, d.xyz);
     BsdfSample bs;

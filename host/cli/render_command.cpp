@@ -363,18 +363,29 @@ int run_render(const RenderOptions& o) {
                       result.converged ? 1 : 0);
         adaptive_summary = buf;
     }
+    std::string instance_summary;
+    if (result.instanced) {
+        const TwoLevelStats& is = result.instances;
+        char buf[300];
+        std::snprintf(buf, sizeof buf,
+                      " instances=%zu instanced_meshes=%zu placed_triangles=%zu tlas_bytes=%zu tlas_depth=%d "
+                      "tlas_build_ms=%.2f blas_bytes=%zu blas_build_ms=%.2f",
+                      is.instances, is.meshes, is.placed_triangles, is.top_bytes, is.top_depth, is.top_build_ms,
+                      is.bottom_bytes, is.bottom_build_ms);
+        instance_summary = buf;
+    }
     std::string device_names;
     for (const auto& d : devices) device_names += (device_names.empty() ? "" : ", ") + d.name;
     std::printf(
         "summary: device=\"%s\" devices=%zu integrator=%s triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f "
         "spp=%llu render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s kernel=%s "
-        "bytes_to_device=%llu bytes_from_device=%llu%s%s%s%s\n",
-        device_names.c_str(), result.shares.size(), integrator_name(settings.integrator), scene.triangle_count(),
+        "bytes_to_device=%llu bytes_from_device=%llu scene_device_bytes=%zu%s%s%s%s%s\n",
+        device_names.c_str(), result.shares.size(), integrator_name(settings.integrator), scene.placed_triangle_count(),
         result.bvh.build_ms, result.bvh.node_count, result.bvh.sah_cost, (unsigned long long)done_spp, wall,
         samples / wall * 1e-6, double(result.rays) / wall * 1e-6, (unsigned long long)result.rays,
         (unsigned long long)result.nonfinite, accel_name(settings.accel), kernel_shapes_used(result.shares).c_str(),
         (unsigned long long)result.bytes_to_device, (unsigned long long)result.bytes_from_device,
-        result.resumed_spp ? (" resumed_spp=" + std::to_string(result.resumed_spp)).c_str() : "",
+        result.scene_device_bytes, instance_summary.c_str(), result.resumed_spp ? (" resumed_spp=" + std::to_string(result.resumed_spp)).c_str() : "",
         adaptive_summary.c_str(), result.stopped ? " interrupted=1" : "",
         denoiser && !result.stopped
             ? (" denoise_s=" + std::to_string(denoise_seconds) + " guides_s=" + std::to_string(guides.seconds)).c_str()

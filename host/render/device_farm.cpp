@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "cl/context.hpp"
+#include "render/device_scene.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -217,5 +218,13 @@ std::vector<DeviceShare> DeviceFarm::shares() const {
 }
 
 const BvhStats& DeviceFarm::bvh_stats() const { return prepared_->summary.bvh_stats; }
+
+const SceneSummary& DeviceFarm::scene_summary() const { return prepared_->summary; }
+
+std::size_t DeviceFarm::scene_device_bytes() const {
+    std::size_t n = 0;
+    for (const auto& [what, bytes] : DeviceScene::memory_needs(*prepared_)) n += bytes;
+    return n;
+}
 
 }  // namespace clpath

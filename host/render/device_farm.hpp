@@ -79,6 +79,9 @@ public:
     // After wait(): what each device did (rays and bytes are counted when a device finishes).
     std::vector<DeviceShare> shares() const;
     const BvhStats& bvh_stats() const;
+    const SceneSummary& scene_summary() const;
+    // The bytes one device holds for the scene (DeviceScene::memory_needs, summed).
+    std::size_t scene_device_bytes() const;
 
 private:
     // A device's film as it last read it back, and the chunks in it.

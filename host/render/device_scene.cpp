@@ -22,7 +22,7 @@ std::size_t alias_bytes(const PreparedScene& s) {
 
 std::vector<std::pair<std::string, std::size_t>> DeviceScene::memory_needs(const PreparedScene& s) {
     // The kernels' node records (device_nodes): widened from the binary tree, so sized by converting.
-    return {{"BVH nodes", device_nodes(s.summary.accel, s.accel).size()},
+    return {{"BVH nodes", scene_node_bytes(s).size()},
             {"triangles", s.accel.triangles.size() * sizeof(TriVerts)},
             {"triangle materials", s.triangle_material.size() * sizeof(std::uint32_t)},
             {"materials", s.materials.size() * sizeof(Material)},
@@ -45,7 +45,7 @@ const std::vector<std::string>& scene_buffer_names() {
 
 DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s) : ctx_(ctx), summary_(s.summary) {
     ctx.check_fits(memory_needs(s));
-    const std::vector<unsigned char> node_bytes = device_nodes(s.summary.accel, s.accel);
+    const std::vector<unsigned char> node_bytes = scene_node_bytes(s);
     slot(SceneBuffer::nodes) = ctx.buffer(node_bytes.size(), CL_MEM_READ_ONLY, "BVH nodes", node_bytes.data());
     slot(SceneBuffer::tris) = ctx.buffer(s.accel.triangles.size() * sizeof(TriVerts), CL_MEM_READ_ONLY, "triangles",
                        s.accel.triangles.data());

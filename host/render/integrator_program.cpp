@@ -182,12 +182,14 @@ void IntegratorProgram::launch_band(const DeviceScene& scene, Film& film, const 
 void IntegratorProgram::ensure_wavefront_buffers(std::uint32_t paths) {
     if (paths <= wf_.capacity) return;
     const std::size_t n = paths;
+    // A hit is one float4 row; an instanced scene's adds the instance, an int per path after the rows (wf_trace).
+    const std::size_t hit_bytes = features_.instances ? 20 : 16;
     ctx_.check_fits({{"wavefront path state", n * kPathRows * 16},
-                     {"wavefront hits", n * 16},
+                     {"wavefront hits", n * hit_bytes},
                      {"wavefront shadow rays", n * kShadowRows * 16},
                      {"wavefront queues", 3 * n * sizeof(cl_uint)}});
     wf_.paths = ctx_.buffer(n * kPathRows * 16, CL_MEM_READ_WRITE, "wavefront path state");
-    wf_.hits = ctx_.buffer(n * 16, CL_MEM_READ_WRITE, "wavefront hits");
+    wf_.hits = ctx_.buffer(n * hit_bytes, CL_MEM_READ_WRITE, "wavefront hits");
     wf_.shadows = ctx_.buffer(n * kShadowRows * 16, CL_MEM_READ_WRITE, "wavefront shadow rays");
     wf_.queues[0] = ctx_.buffer(n * sizeof(cl_uint), CL_MEM_READ_WRITE, "wavefront queue");
     wf_.queues[1] = ctx_.buffer(n * sizeof(cl_uint), CL_MEM_READ_WRITE, "wavefront queue");

@@ -12,6 +12,8 @@ SceneFeatures scene_features(const Scene& scene) {
     SceneFeatures f;
     std::vector<bool> used(scene.materials.size(), false);
     for (auto m : scene.triangle_material) used[m] = true;
+    for (const auto& mesh : scene.meshes)
+        for (auto m : mesh.triangle_material) used[m] = true;
     for (std::size_t i = 0; i < used.size(); ++i) {
         if (!used[i]) continue;
         const SceneMaterial& m = scene.materials[i];
@@ -29,6 +31,8 @@ SceneFeatures scene_features(const Scene& scene) {
     f.environment = scene.environment.emits();
     f.environment_map = f.environment && !scene.environment.image.empty();
     f.normals = !scene.normals.empty();
+    for (const auto& mesh : scene.meshes) f.normals = f.normals || !mesh.normals.empty();
+    f.instances = !scene.instances.empty();
     return f;
 }
 
@@ -49,6 +53,7 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
         f.alpha = scene.alpha;
         f.clearcoat = scene.clearcoat;
         f.transmission = scene.transmission;
+        f.instances = scene.instances;  // the node buffer's layout: it follows the scene
         f.triangle_lights = f.delta_lights = path;
         f.uniform_hemisphere = uniform;
         return f;
@@ -63,6 +68,7 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
     f.textures = scene.textures;
     f.vertex_colors = scene.vertex_colors;
     f.alpha = scene.alpha;
+    f.instances = scene.instances;
     f.clearcoat = scene.clearcoat && scene.materials[CLP_MAT_GLTF];
     f.transmission = scene.transmission && scene.materials[CLP_MAT_GLTF];
     f.uniform_hemisphere = uniform && scene.materials[CLP_MAT_DIFFUSE];  // no diffuse surface: nothing to change
@@ -85,6 +91,7 @@ std::string build_options(const KernelFeatures& f) {
     if (f.clearcoat) o += " -DCLP_HAS_CLEARCOAT";
     if (f.transmission) o += " -DCLP_HAS_TRANSMISSION";
     if (f.flat_accel) o += " -DCLP_ACCEL_FLAT";
+    if (f.instances) o += " -DCLP_HAS_INSTANCES";
     if (f.uniform_hemisphere) o += " -DCLP_UNIFORM_HEMISPHERE";
     o += " -DCLP_INTEGRATOR=" + std::to_string(f.integrator) + "u";
     o += " -DCLP_MAX_DEPTH=" + std::to_string(f.max_depth) + "u";

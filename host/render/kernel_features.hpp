@@ -27,6 +27,7 @@ struct KernelFeatures {
     bool alpha = false;          // MASK or BLEND coverage is tested in traversal (CLP_HAS_ALPHA)
     bool clearcoat = false;      // a glTF material has a clear coat (CLP_HAS_CLEARCOAT)
     bool transmission = false;   // a glTF material transmits (CLP_HAS_TRANSMISSION)
+    bool instances = false;      // meshes placed by instances: the two-level walk (CLP_HAS_INSTANCES)
     std::uint32_t integrator = CLP_INTEGRATOR_PATH;
     std::uint32_t max_depth = 16;
 
@@ -39,6 +40,7 @@ struct SceneFeatures {
     bool emission = false, lights = false, environment = false, environment_map = false, normals = false;
     bool textures = false, vertex_colors = false, alpha = false;
     bool clearcoat = false, transmission = false;  // glTF layers (KHR_materials_clearcoat, _transmission)
+    bool instances = false;  // some mesh is placed by instances (Scene::instances)
 };
 SceneFeatures scene_features(const Scene& scene);
 

@@ -13,6 +13,7 @@
 
 #include "bvh/accel.hpp"
 #include "bvh/bvh.hpp"
+#include "bvh/instances.hpp"
 #include "render/environment_map.hpp"
 #include "render/kernel_features.hpp"
 #include "render/light_table.hpp"
@@ -40,14 +41,19 @@ struct SceneSummary {
     float diagonal = 1;              // of the bounding box; 1 for a degenerate one
     std::uint32_t attr_stride = 0;   // FrameParams.attr_stride (render/surface_buffers.hpp)
     std::uint32_t surface_flags = 0; // CLP_SCENE_UVS, _TANGENTS, _COLORS, _MATERIAL_EXT
+    bool instanced = false;          // the two-level BVH (features.instances); instance_stats says what it holds
+    TwoLevelStats instance_stats;
 };
 
 struct PreparedScene {
     SceneSummary summary;
     Camera camera;  // the scene's own
     // The structure the kernels traverse; its leaf-ordered triangles carry their light's index.
+    // For an instanced scene (summary.instanced): no binary nodes, the
+    // triangles of every bottom level, and the nodes in instanced_nodes.
     Bvh accel;
-    std::vector<std::uint32_t> triangle_material;  // per scene triangle
+    std::vector<Bvh4Node128> instanced_nodes;  // top level, instance records, bottom levels (bvh/instances.hpp)
+    std::vector<std::uint32_t> triangle_material;  // per scene triangle, then each instanced mesh's (from its first_prim)
     std::vector<Material> materials;
     // Parallel to materials when the scene maps a texture or cuts out by
     // alpha (summary.surface_flags has CLP_SCENE_MATERIAL_EXT); else empty,
@@ -64,5 +70,9 @@ struct PreparedScene {
 // change nothing here). Throws clpath::Error when the scene is invalid or its
 // environment image cannot be read.
 std::shared_ptr<const PreparedScene> prepare_scene(const Scene& scene, const RenderSettings& settings);
+
+// The node buffer the kernels traverse, as bytes: device_nodes of the
+// structure, or the two-level nodes of an instanced scene.
+std::vector<unsigned char> scene_node_bytes(const PreparedScene& scene);
 
 }  // namespace clpath

@@ -229,6 +229,9 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
     }
     r.shares = farm.shares();
     r.bvh = farm.bvh_stats();
+    r.instanced = farm.scene_summary().instanced;
+    r.instances = farm.scene_summary().instance_stats;
+    r.scene_device_bytes = farm.scene_device_bytes();
     if (group) {
         group->reduce_film(r.film);
         r.shares = group->gather_shares(r.shares);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bvh/bvh.hpp"
+#include "bvh/instances.hpp"
 #include "cl/device.hpp"
 #include "render/device_farm.hpp"
 #include "render/exact_film.hpp"
@@ -57,6 +58,9 @@ struct SessionResult {
     ExactFilm film;                   // on the lead (or alone): the whole image's sums (and, adaptive, per-pixel counts)
     std::vector<DeviceShare> shares;  // per device (on the lead, of every process)
     BvhStats bvh;
+    bool instanced = false;           // the scene places meshes by instances: a two-level BVH
+    TwoLevelStats instances;          // ... what it holds and what it took to build
+    std::size_t scene_device_bytes = 0;  // the scene's buffers on one device
     bool stopped = false;             // stop_requested() ended it early
     std::uint64_t resumed_spp = 0;    // samples per pixel the resumed checkpoint held (0: not resumed)
     bool converged = false;           // adaptive: every pixel reached the noise target

@@ -82,6 +82,12 @@ void Scene::add_triangles(const std::vector<glm::vec3>& tris, std::uint32_t mate
     if (!colors.empty()) colors.resize(vertices.size(), glm::vec4(1));
 }
 
+std::size_t Scene::placed_triangle_count() const {
+    std::size_t n = triangle_count();
+    for (const auto& i : instances) n += i.mesh < meshes.size() ? meshes[i.mesh].triangle_count() : 0;
+    return n;
+}
+
 bool Scene::has_emitter() const {
     if (!lights.empty() || environment.emits()) return true;
     std::vector<bool> used(materials.size(), false);

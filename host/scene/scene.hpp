@@ -90,6 +90,25 @@ struct Texture {
 // the material table they had before them.
 struct SceneMaterial : Material, MaterialExt {};
 
+// A mesh placed by instances (Scene::instances): its triangles are stored
+// once, in its own object space, and are not in the scene's flat arrays.
+// Emissive meshes are never instanced (the loaders place them flattened), so
+// the light table holds every emitter as before.
+struct InstancedMesh {
+    std::string name;                                // for messages: the file or label it came from
+    std::vector<glm::vec3> vertices;                 // three per triangle, object space
+    std::vector<std::uint32_t> triangle_material;    // one per triangle
+    std::vector<glm::vec3> normals;                  // empty (flat), or three per triangle; zero: none there
+    std::size_t triangle_count() const { return triangle_material.size(); }
+};
+
+// One placement of an InstancedMesh: world = object_to_world * object. Any
+// invertible affine map: translation, rotation, non-uniform scale, mirroring.
+struct MeshInstance {
+    std::uint32_t mesh = 0;            // index in Scene::meshes
+    glm::mat4 object_to_world{1.0f};   // affine (last row 0 0 0 1)
+};
+
 struct Scene {
     std::string name;
     // Three vertices per triangle; a triangle's front face is the side from
@@ -110,6 +129,10 @@ struct Scene {
     std::vector<glm::vec2> uvs;
     std::vector<glm::vec4> tangents;
     std::vector<glm::vec4> colors;
+    // Meshes placed by instances, each instance a copy in the world; empty
+    // for a scene whose every triangle is in the arrays above.
+    std::vector<InstancedMesh> meshes;
+    std::vector<MeshInstance> instances;
     std::vector<Texture> textures;  // MaterialExt::texture indexes these
     std::vector<PunctualLight> lights;
     Environment environment;
@@ -122,7 +145,10 @@ struct Scene {
     // presentation's lighting), one line each; printed unless output is quiet.
     std::vector<std::string> notes;
 
+    // The triangles of the flat arrays (instanced meshes not counted).
     std::size_t triangle_count() const { return triangle_material.size(); }
+    // The triangles in the world: the flat ones plus every instance's copy.
+    std::size_t placed_triangle_count() const;
     // Adds a material and returns its index; names must be unique.
     std::uint32_t add_material(const std::string& name, const SceneMaterial& m);
     // Appends triangles (3 vertices each) with one material, as a new object.

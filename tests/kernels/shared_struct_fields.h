@@ -7,9 +7,11 @@
 
 #define CLP_SHARED_STRUCTS(S) \
     S(BvhNode64) S(Bvh4Node128) S(TriVerts) S(Material) S(MaterialExt) S(Light) S(AliasEntry) S(CameraData) S(FrameParams) S(Counters) \
-    S(AccumPixel) S(BatchRay) S(Hit) S(TextureDesc)
+    S(AccumPixel) S(BatchRay) S(Hit) S(TextureDesc) S(Instance)
 
 #define CLP_SHARED_FIELDS(F) \
+    F(Instance, object_to_world) F(Instance, world_to_object) F(Instance, blas_root) F(Instance, first_tri) \
+    F(Instance, first_prim) F(Instance, det_sign) F(Instance, mesh) F(Instance, pad0) F(Instance, pad1) F(Instance, pad2) \
     F(BvhNode64, lo0) F(BvhNode64, child0) F(BvhNode64, hi0) F(BvhNode64, count0) \
     F(BvhNode64, lo1) F(BvhNode64, child1) F(BvhNode64, hi1) F(BvhNode64, count1) \
     F(Bvh4Node128, lo_x) F(Bvh4Node128, hi_x) F(Bvh4Node128, lo_y) F(Bvh4Node128, hi_y) F(Bvh4Node128, lo_z) F(Bvh4Node128, hi_z) \

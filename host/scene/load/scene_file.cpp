@@ -14,6 +14,7 @@
 #include "scene/json_fields.hpp"
 #include "scene/load/obj_mesh.hpp"
 #include "scene/load/obj_textures.hpp"
+#include "scene/load/scene_instances.hpp"
 #include "scene/render_names.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/shapes.hpp"
@@ -223,7 +224,7 @@ public:
         if (environment) read_environment(Object(*environment));
 
         builder_.finish();
-        if (scene_.triangle_count() == 0)
+        if (scene_.triangle_count() == 0 && scene_.instances.empty())
             objects->fail("the scene has no triangles left: all " + std::to_string(builder_.dropped()) +
                           " were degenerate");
         return std::move(scene_);
@@ -333,7 +334,12 @@ private:
         const auto materials = o.get("materials");
         const bool smooth = o.get("smooth") ? o.get("smooth")->boolean() : true;
         const bool normalize = o.get("normalize") ? o.get("normalize")->boolean() : false;
+        const auto instances = o.get("instances");
         o.finish();
+        const std::vector<glm::mat4> placements =
+            instances ? read_instance_transforms(*instances) : std::vector<glm::mat4>{};
+        if (instances && is_gltf_file(path))
+            instances->fail("instances of a glTF model are not supported: its nodes place its meshes (and share them)");
         if (is_gltf_file(path)) return read_gltf(file_v, path, material, materials, smooth, normalize, m, label);
 
         auto& cached = meshes_[path];
@@ -412,6 +418,9 @@ private:
         }
         static const std::vector<glm::vec3> kNone;
         VertexAttributes attr{&mesh.uvs, nullptr, &mesh.colors};
+        if (instances)
+            return place_mesh_instances(scene_, builder_, label, mesh.vertices, smooth ? mesh.normals : kNone, tri_mat,
+                                        place, placements, attr);
         builder_.add(mesh.vertices, smooth ? mesh.normals : kNone, place, tri_mat, label, attr);
     }
 

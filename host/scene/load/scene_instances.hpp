@@ -1,0 +1,36 @@
+#pragma once
+// A scene file's mesh object with an "instances" list (docs/scene-format.md):
+// the mesh is read once and placed by each entry's transform. Kept out of
+// the scene file's reader so each file holds one job.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/json_fields.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_builder.hpp"
+
+namespace clpath {
+
+// The entries of an "instances" list: each a transform, either
+// {"translate", "rotate", "scale"} (as an object's "transform") or
+// {"matrix": [12 or 16 numbers, row by row]} (an affine map; 16 numbers end
+// in the row 0 0 0 1). Fails naming the entry and field for a wrong type, an
+// empty list, a non-finite, non-affine or singular transform.
+std::vector<glm::mat4> read_instance_transforms(const jsonf::Value& list);
+
+// The mesh (vertices three per triangle, normals empty or parallel, one
+// material per triangle), first placed by `place` (the object's own
+// transform), then by each of `transforms`. Kept once as an instanced mesh
+// unless a material of it emits (the light table lists flattened emitters
+// only), maps a texture or it has texture coordinates or colours (instanced
+// meshes carry none): then each copy is added flattened, and a note says why.
+// Degenerate triangles (after `place`) are dropped, as SceneBuilder does.
+void place_mesh_instances(Scene& scene, SceneBuilder& builder, const std::string& label,
+                          const std::vector<glm::vec3>& vertices, const std::vector<glm::vec3>& normals,
+                          const std::vector<std::uint32_t>& materials, const glm::mat4& place,
+                          const std::vector<glm::mat4>& transforms, const VertexAttributes& attributes);
+
+}  // namespace clpath
