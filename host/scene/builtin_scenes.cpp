@@ -1,5 +1,6 @@
 #include "scene/builtin_scenes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <utility>
@@ -7,6 +8,9 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scene/load/load_options.hpp"
+#include "scene/load/obj_mesh.hpp"
+#include "scene/scene_builder.hpp"
 #include "scene/shapes.hpp"
 #include "util/error.hpp"
 
@@ -110,19 +114,77 @@ Scene closed_room_scene(std::size_t triangles) {
     return s;
 }
 
-std::vector<std::string> builtin_scene_names() { return {"cornell", "scaling:N", "room:N"}; }
+Scene bunnies_scene(std::size_t instances) {
+    if (instances < 1 || instances > 1'000'000)
+        throw Error("bunnies:" + std::to_string(instances) + ": the instance count must be in [1, 1000000]");
+    const ObjMesh bunny = load_obj(kBunnyFile, read_text_file);
+    if (bunny.triangle_count() == 0) throw Error(std::string(kBunnyFile) + ": the mesh has no faces");
+    Scene s;
+    const auto floor = s.add_material("floor", diffuse({0.55f, 0.55f, 0.5f}));
+    const auto fur = s.add_material("bunny", diffuse({0.8f, 0.75f, 0.65f}));
+    // The bunny fitted into a unit box standing on y = 0, once.
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const auto& v : bunny.vertices) {
+        lo = glm::min(lo, v);
+        hi = glm::max(hi, v);
+    }
+    const float longest = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    InstancedMesh mesh;
+    mesh.name = std::string("bunny (") + kBunnyFile + ")";
+    for (std::size_t t = 0; t < bunny.triangle_count(); ++t) {
+        glm::vec3 p[3];
+        for (int c = 0; c < 3; ++c) {
+            const glm::vec3 v = bunny.vertices[3 * t + std::size_t(c)];
+            p[c] = glm::vec3((v.x - 0.5f * (lo.x + hi.x)) / longest, (v.y - lo.y) / longest,
+                             (v.z - 0.5f * (lo.z + hi.z)) / longest);
+        }
+        if (is_degenerate(p[0], p[1], p[2])) continue;
+        mesh.vertices.insert(mesh.vertices.end(), {p[0], p[1], p[2]});
+        if (!bunny.normals.empty())
+            for (int c = 0; c < 3; ++c) mesh.normals.push_back(bunny.normals[3 * t + std::size_t(c)]);
+        mesh.triangle_material.push_back(fur);
+    }
+    s.meshes.push_back(std::move(mesh));
+    const std::size_t side = std::size_t(std::ceil(std::sqrt(double(instances))));
+    const float spacing = 1.3f, half = 0.5f * spacing * float(side);
+    std::uint32_t state = 12345u;  // a fixed LCG: the same field every time
+    auto next = [&state] {
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) / float(1u << 24);
+    };
+    for (std::size_t i = 0; i < instances; ++i) {
+        const float x = (float(i % side) + 0.5f) * spacing - half, z = (float(i / side) + 0.5f) * spacing - half;
+        const glm::vec3 scale(0.7f + 0.5f * next(), 0.6f + 0.6f * next(), 0.7f + 0.5f * next());
+        const glm::mat4 turn = glm::rotate(glm::mat4(1), 2 * glm::pi<float>() * next(), glm::vec3(0, 1, 0));
+        const glm::mat4 mirror = glm::scale(glm::mat4(1), glm::vec3(i % 3 == 2 ? -1.0f : 1.0f, 1, 1));
+        s.instances.push_back({0, glm::translate(glm::mat4(1), {x, 0, z}) * turn * mirror * glm::scale(glm::mat4(1), scale)});
+    }
+    const float extent = half + spacing;
+    s.add_triangles(transformed(make_plane(), shape_transform({0, 0, 0}, {0, 0, 0}, {2 * extent, 1, 2 * extent})), floor);
+    s.environment.color = glm::vec3(0.9f, 0.95f, 1.0f);
+    s.camera.eye = {-half - 2.0f, 2.5f + 0.08f * half, -half - 2.0f};
+    s.camera.target = {0, 0, 0};
+    s.camera.vfov_degrees = 50;
+    s.camera.width = 640;
+    s.camera.height = 360;
+    s.name = "bunnies-" + std::to_string(instances);
+    return s;
+}
+
+std::vector<std::string> builtin_scene_names() { return {"cornell", "scaling:N", "room:N", "bunnies:N"}; }
 
 Scene builtin_scene(const std::string& name) {
     if (name == "cornell") return cornell_thesis_scene();
     // "scaling:1000000" or "scaling:1e6"; the same for "room:".
     for (const auto& [prefix, make] : {std::pair{std::string("scaling:"), &scaling_scene},
-                                       std::pair{std::string("room:"), &closed_room_scene}}) {
+                                       std::pair{std::string("room:"), &closed_room_scene},
+                                       std::pair{std::string("bunnies:"), &bunnies_scene}}) {
         if (name.rfind(prefix, 0) != 0) continue;
         const std::string count = name.substr(prefix.size());
         char* end = nullptr;
         const double n = std::strtod(count.c_str(), &end);
         if (count.empty() || *end != '\0' || !(n >= 1) || n != std::floor(n) || n > 1e12)
-            throw Error(name + ": expected " + prefix + "N with N a whole number of triangles, e.g. " + prefix +
+            throw Error(name + ": expected " + prefix + "N with N a whole number (of triangles; of instances for bunnies:), e.g. " + prefix +
                         "100000 or " + prefix + "1e6");
         return make(std::size_t(n));
     }

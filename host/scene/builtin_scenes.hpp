@@ -27,6 +27,14 @@ Scene closed_room_scene(std::size_t triangles);
 
 // Names accepted by builtin_scene() ("scaling:N" stands for every count N), and the scene for one of them (throws
 // clpath::Error for an unknown name).
+// "bunnies:N": N instances of the Stanford bunny (69,666 triangles, Debian's
+// glmark2-data copy, kBunnyFile), stored once, on a square grid on a floor
+// under a sky: each copy turned, scaled non-uniformly, every third one
+// mirrored. 10,000 place 7 10^8 triangles in megabytes of device memory.
+// Throws clpath::Error for N outside [1, 1000000] or the bunny file missing.
+inline constexpr const char* kBunnyFile = "/usr/share/glmark2/models/bunny.obj";
+Scene bunnies_scene(std::size_t instances);
+
 std::vector<std::string> builtin_scene_names();
 Scene builtin_scene(const std::string& name);
 

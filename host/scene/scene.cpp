@@ -88,6 +88,42 @@ std::size_t Scene::placed_triangle_count() const {
     return n;
 }
 
+Scene flatten_instances(const Scene& scene, std::size_t max_triangles) {
+    Scene s = scene;
+    s.meshes.clear();
+    s.instances.clear();
+    if (scene.placed_triangle_count() > max_triangles)
+        throw Error("scene '" + scene.name + "': flattening its instances gives " +
+                    std::to_string(scene.placed_triangle_count()) + " triangles, more than " +
+                    std::to_string(max_triangles));
+    bool normals = !s.normals.empty();
+    for (const auto& in : scene.instances) normals = normals || !scene.meshes[in.mesh].normals.empty();
+    if (normals) s.normals.resize(s.vertices.size(), glm::vec3(0));  // zero: none, shaded flat
+    for (const auto& in : scene.instances) {
+        const InstancedMesh& m = scene.meshes[in.mesh];
+        const glm::mat3 l(in.object_to_world);
+        const bool flip = glm::determinant(l) < 0;
+        const glm::mat3 normal_m = glm::transpose(glm::inverse(l));
+        const std::uint32_t object = s.next_object_id();
+        for (std::size_t t = 0; t < m.triangle_count(); ++t) {
+            const std::size_t corner[3] = {3 * t, 3 * t + (flip ? 2 : 1), 3 * t + (flip ? 1 : 2)};
+            for (std::size_t c : corner) {
+                s.vertices.push_back(glm::vec3(in.object_to_world * glm::vec4(m.vertices[c], 1.0f)));
+                if (!normals) continue;
+                const glm::vec3 n = m.normals.empty() ? glm::vec3(0) : normal_m * m.normals[c];
+                const float len = glm::length(n);
+                s.normals.push_back(len > 0 && std::isfinite(len) ? n / len : glm::vec3(0));
+            }
+            s.triangle_material.push_back(m.triangle_material[t]);
+            s.triangle_object.push_back(object);
+        }
+    }
+    if (!s.uvs.empty()) s.uvs.resize(s.vertices.size(), glm::vec2(0));
+    if (!s.tangents.empty()) s.tangents.resize(s.vertices.size(), glm::vec4(0));
+    if (!s.colors.empty()) s.colors.resize(s.vertices.size(), glm::vec4(1));
+    return s;
+}
+
 bool Scene::has_emitter() const {
     if (!lights.empty() || environment.emits()) return true;
     std::vector<bool> used(materials.size(), false);

@@ -159,6 +159,14 @@ struct Scene {
     bool has_emitter() const;
 };
 
+// The scene with every instance's copy added to the flat arrays (and none
+// left instanced), as the loaders place a transformed mesh: vertices moved,
+// two corners swapped for a mirroring transform (the front face stays the
+// outside), normals through the inverse transpose. What exporters and the
+// renderer's comparisons of instancing against flattening use. Throws
+// clpath::Error when the copies would exceed max_triangles.
+Scene flatten_instances(const Scene& scene, std::size_t max_triangles = std::size_t(1) << 31);
+
 // The float[3] fields of the shared structs, to and from glm.
 inline void store3(float* dst, glm::vec3 v) {
     dst[0] = v.x;

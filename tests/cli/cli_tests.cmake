@@ -25,7 +25,7 @@ clpath_cli_test(unknown_output_format FAIL ARGS render --spp 1 -o ${CLI_OUT}/x.b
                 OUTPUT "output .*/x\\.bmp: unknown image format '\\.bmp' \\(use \\.png, \\.exr or \\.pfm\\)"
                 FORBID ${CLI_OUT}/x.bmp)
 clpath_cli_test(unknown_scene FAIL ARGS render no-such-scene --spp 1 -o ${CLI_OUT}/unknown-scene.pfm
-                OUTPUT "no built-in scene named 'no-such-scene' \\(built-in: cornell scaling:N room:N\\)"
+                OUTPUT "no built-in scene named 'no-such-scene' \\(built-in: cornell scaling:N room:N bunnies:N\\)"
                 FORBID ${CLI_OUT}/unknown-scene.pfm)
 clpath_cli_test(bad_spp_text FAIL ARGS render --spp many OUTPUT "--spp: 'many' is not a whole number from 1 to 4294967295")
 # Beyond the 32-bit sample index the kernels use (host/render/renderer.hpp kMaxSamplesPerPixel).

@@ -36,7 +36,7 @@ clpath_usage_test(help_is_not_an_error RC 0 ARGS render --help OUTPUT "--tonemap
 foreach(cmd view export bench_rays bench_build bench_convergence)
     string(REPLACE "_" ";" words ${cmd})
     clpath_usage_test(${cmd}_help_names_scene_kinds RC 0 ARGS ${words} --help
-                      OUTPUT "glTF model \\(\\.gltf, \\.glb\\) or built-in scene \\(cornell, scaling:N, room:N\\)")
+                      OUTPUT "glTF model \\(\\.gltf, \\.glb\\) or built-in scene \\(cornell, scaling:N, room:N, bunnies:N\\)")
 endforeach()
 
 # --- numbers: non-finite, negative, out of range ---------------------------------------------
