@@ -158,9 +158,13 @@ CLP_GPU_INLINE void surface_at(Surface* out, const SceneData* sc, const Hit* h, 
 #ifdef CLP_HAS_NORMALS
     if (sc->fp->scene_flags & CLP_SCENE_NORMALS) {
     global const float* n = sc->normals + 9 * (size_t)s.tv->prim;
-    float3 ns = (1.0f - h->b1 - h->b2) * vload3(0, n) + h->b1 * vload3(1, n) + h->b2 * vload3(2, n);
 #ifdef CLP_HAS_INSTANCES
-    if (dot(ns, ns) > 0.0f) ns = instance_normal(im, ns);
+    /* Each corner's normal moved and made unit before the interpolation, as
+     * a flattened copy's are (normalising does not commute with it). */
+    float3 ns = (1.0f - h->b1 - h->b2) * instance_normal(im, vload3(0, n)) + h->b1 * instance_normal(im, vload3(1, n)) +
+                h->b2 * instance_normal(im, vload3(2, n));
+#else
+    float3 ns = (1.0f - h->b1 - h->b2) * vload3(0, n) + h->b1 * vload3(1, n) + h->b2 * vload3(2, n);
 #endif
     float len = length3(ns);
     if (len > 0.0f && isfinite(len)) s.ns = ns / len;
