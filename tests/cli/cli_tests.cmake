@@ -180,3 +180,12 @@ clpath_cli_test(adaptive_target_zero FAIL ARGS render --noise-target 0 -o ${CLI_
 clpath_cli_test(adaptive_odd_chunk FAIL ARGS render --noise-target 0.1 --chunk 3 -o ${CLI_OUT}/adaptive-odd.pfm
                 OUTPUT "--noise-target: adaptive sampling needs chunks of an even number of samples \\(--chunk 3 is odd\\)"
                 FORBID ${CLI_OUT}/adaptive-odd.pfm)
+
+# --- instancing: 10,000 bunnies (7 10^8 triangles placed) render in under 10 MB of scene buffers
+clpath_cli_test(render_bunnies_10000 ARGS render bunnies:10000 --spp 1 --width 32 --height 18
+                -o ${CLI_OUT}/bunnies.pfm
+                OUTPUT "summary: .*triangles=696660002 .*nonfinite=0 .*scene_device_bytes=[1-9][0-9][0-9][0-9][0-9][0-9][0-9] instances=10001 instanced_meshes=2 placed_triangles=696660002 tlas_bytes=")
+clpath_cli_test(singular_instance FAIL ARGS render ${CMAKE_CURRENT_SOURCE_DIR}/cli/data/singular-instance.json --spp 1
+                -o ${CLI_OUT}/singular-instance.pfm
+                OUTPUT "singular-instance\\.json: objects\\[1\\]\\.instances\\[1\\]\\.scale: the transform is singular"
+                FORBID ${CLI_OUT}/singular-instance.pfm)
