@@ -146,12 +146,15 @@ CLP_GPU_INLINE void surface_at(Surface* out, const SceneData* sc, const Hit* h, 
      * the normals with the inverse transpose. */
     global const float4* im = (global const float4*)&sc->nodes[h->inst];
     s.ng = instance_normal(im, cross(v1 - v0, v2 - v0));
-    s.p = instance_hit_point(im, v0, v1, v2, h->b1, h->b2, &s.err);
 #else
     s.ng = normalize3(cross(v1 - v0, v2 - v0));
-    s.p = hit_point(v0, v1, v2, h->b1, h->b2, &s.err);
 #endif
     s.front = dot(s.ng, d) < 0.0f;
+#ifdef CLP_HAS_INSTANCES
+    s.p = instance_hit_point(im, v0, v1, v2, h->b1, h->b2, &s.err);
+#else
+    s.p = hit_point(v0, v1, v2, h->b1, h->b2, &s.err);
+#endif
     uint mi = sc->tri_material[s.tv->prim];
     s.m = &sc->materials[mi];
     s.ns = s.ng;

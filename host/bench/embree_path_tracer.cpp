@@ -36,6 +36,7 @@ std::string cpu_model_name() {
 
 std::vector<std::string> embree_path_unsupported(const Scene& scene) {
     std::vector<std::string> why;
+    if (!scene.instances.empty()) why.push_back("meshes placed by instances");
     static const char* kind_names[] = {"diffuse", "a mirror", "a conductor", "a dielectric", "a glTF metallic-roughness material"};
     std::vector<bool> used(scene.materials.size(), false);
     for (auto m : scene.triangle_material)

@@ -215,6 +215,9 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
                     " (rays come in " + std::to_string(tile) + "x" + std::to_string(tile) + "-pixel tiles), got " +
                     std::to_string(o.width) + "x" + std::to_string(o.height));
     if (o.launches < 1) throw Error("ray batches: at least one timed launch is needed");
+    if (!scene.instances.empty())
+        throw Error("bench rays: scene '" + scene.name +
+                    "' places meshes by instances, which the ray batches do not walk (they time the one-level BVH)");
     if (scene.triangle_count() == 0) throw Error("scene '" + scene.name + "' has no triangles");
     if (o.accel == Accel::Flat && scene.triangle_object.size() != scene.triangle_count())
         throw Error("internal: scene '" + scene.name + "' has no object id for every triangle (needed by flat)");
