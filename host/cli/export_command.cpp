@@ -83,6 +83,9 @@ int run_export(const ExportArgs& o) {
 
     Scene scene = load_scene(o.scene);
     for (const auto& w : scene.warnings) std::fprintf(stderr, "clpath: warning: %s\n", w.c_str());
+    // The exported formats hold triangles: every instance's copy goes out
+    // flattened (at most 50 million triangles; more is refused by name).
+    if (!scene.instances.empty()) scene = flatten_instances(scene, 50'000'000);
     if (o.width) scene.camera.width = o.width;
     if (o.height) scene.camera.height = o.height;
     if (o.max_depth) scene.render.max_depth = *o.max_depth;
