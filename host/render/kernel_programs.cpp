@@ -239,6 +239,16 @@ std::vector<ProgramSpec> covering_programs(const std::vector<NamedSceneFeatures>
         s.accel = Accel::Flat;
         list.add_wavefront(n + "-flat-all", all_opaque, s, "wavefront " + n + ", flat object list, every feature");
     }
+    // Instances change the walk and the surface (the two-level BVH,
+    // CLP_HAS_INSTANCES): over diffuse, in both shapes. Not a scene switch of
+    // the programs above: it follows the scene even with every feature
+    // compiled in (the node buffer's layout), and the flat list has none.
+    {
+        SceneFeatures inst = diffuse_only();
+        inst.instances = true;
+        list.add_render("path-diffuse-instances", inst, defaults, "diffuse, meshes placed by instances");
+        list.add_wavefront("path-diffuse-instances", inst, defaults, "wavefront path, diffuse, instances");
+    }
     for (Accel a : {Accel::Bvh, Accel::Flat}) list.add(ray_batch_program(a, code), "bench rays");
     for (const auto& sc : scenes)
         for (auto& p : scene_programs(sc, code)) {

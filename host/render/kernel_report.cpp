@@ -114,7 +114,12 @@ const std::vector<KernelBudget>& kernel_budgets() {
         // of GGX dielectrics and conductors in programs without glTF
         // materials (65-67).
         {"wf_camera", "sm_90", 64, 256, nullptr, nullptr},
-        {"wf_trace", "sm_90", 64, 256, nullptr, nullptr, 72, 0},
+        {"wf_trace", "sm_90", 64, 256, nullptr, "-DCLP_HAS_INSTANCES", 72, 0},
+        // The two-level walk of instanced scenes: one stack for both levels
+        // (CLP_INSTANCE_STACK, 109 entries: 436 bytes) and the world ray kept
+        // beside the object-space one. Not met; held at the figures of its
+        // first build (sm_90, ptxas 13.0).
+        {"wf_trace", "sm_90", 64, 256, "-DCLP_HAS_INSTANCES", nullptr, 86, 440},
         {"wf_shade", "sm_90", 64, 256, nullptr, "-DCLP_HAS_MAT_GLTF"},
         {"wf_shade", "sm_90", 96, 256, "-DCLP_HAS_MAT_GLTF", nullptr},
         {"wf_light", "sm_90", 64, 256, nullptr, nullptr},
@@ -122,7 +127,8 @@ const std::vector<KernelBudget>& kernel_budgets() {
         {"wf_connect", "sm_90", 96, 256, "-DCLP_HAS_MAT_GLTF", nullptr},
         {"wf_scatter", "sm_90", 64, 256, nullptr, "-DCLP_HAS_MAT_GLTF", 67, 0},
         {"wf_scatter", "sm_90", 96, 256, "-DCLP_HAS_MAT_GLTF", nullptr},
-        {"wf_shadow", "sm_90", 64, 256, nullptr, nullptr, 72, 0},
+        {"wf_shadow", "sm_90", 64, 256, nullptr, "-DCLP_HAS_INSTANCES", 72, 0},
+        {"wf_shadow", "sm_90", 64, 256, "-DCLP_HAS_INSTANCES", nullptr, 85, 440},
         {"wf_next_bounce", "sm_90", 64, 256, nullptr, nullptr},
         {"wf_accumulate", "sm_90", 64, 256, nullptr, nullptr},
     };
