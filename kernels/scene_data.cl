@@ -98,6 +98,14 @@ typedef struct {
 #define surface_layers_arg(s)
 #endif
 
+/* The point h found on triangle tv, with its rounding-error bound *err and
+ * the triangle's unit geometric normal *ng (of the winding). */
+static inline float3 surface_point(global const TriVerts* tv, const Hit* h, float3* ng, float3* err) {
+    float3 v0 = load3g(tv->v0), v1 = load3g(tv->v1), v2 = load3g(tv->v2);
+    *ng = normalize3(cross(v1 - v0, v2 - v0));
+    return hit_point(v0, v1, v2, h->b1, h->b2, err);
+}
+
 /* The surface a hit found, written to *out (not returned: see no_hit in
  * traverse_leaf.cl). Forced inline on a GPU: the wavefront's shading kernels
  * each recompute it, and kept out of line it is handed back through the
@@ -105,10 +113,8 @@ typedef struct {
 CLP_GPU_INLINE void surface_at(Surface* out, const SceneData* sc, const Hit* h, float3 d) {
     Surface s;
     s.tv = &sc->tris[h->tri];
-    float3 v0 = load3g(s.tv->v0), v1 = load3g(s.tv->v1), v2 = load3g(s.tv->v2);
-    s.ng = normalize3(cross(v1 - v0, v2 - v0));
+    s.p = surface_point(s.tv, h, &s.ng, &s.err);
     s.front = dot(s.ng, d) < 0.0f;
-    s.p = hit_point(v0, v1, v2, h->b1, h->b2, &s.err);
     uint mi = sc->tri_material[s.tv->prim];
     s.m = &sc->materials[mi];
     s.ns = s.ng;

@@ -110,9 +110,7 @@ const std::vector<KernelBudget>& kernel_budgets() {
         // lobes), which may take half as many registers again. Not met yet,
         // held at the figures of the 63-program gate (sm_90, ptxas 13.0):
         // the walks of alpha-masked scenes (the alpha test inside the leaf
-        // test; the flat object list's walk takes 68), and the BSDF sampling
-        // of GGX dielectrics and conductors in programs without glTF
-        // materials (65-67).
+        // test; the flat object list's walk takes 68).
         {"wf_camera", "sm_90", 64, 256, nullptr, nullptr},
         {"wf_trace", "sm_90", 64, 256, nullptr, nullptr, 72, 0},
         {"wf_shade", "sm_90", 64, 256, nullptr, "-DCLP_HAS_MAT_GLTF"},
@@ -120,7 +118,7 @@ const std::vector<KernelBudget>& kernel_budgets() {
         {"wf_light", "sm_90", 64, 256, nullptr, nullptr},
         {"wf_connect", "sm_90", 64, 256, nullptr, "-DCLP_HAS_MAT_GLTF"},
         {"wf_connect", "sm_90", 96, 256, "-DCLP_HAS_MAT_GLTF", nullptr},
-        {"wf_scatter", "sm_90", 64, 256, nullptr, "-DCLP_HAS_MAT_GLTF", 67, 0},
+        {"wf_scatter", "sm_90", 64, 256, nullptr, "-DCLP_HAS_MAT_GLTF"},
         {"wf_scatter", "sm_90", 96, 256, "-DCLP_HAS_MAT_GLTF", nullptr},
         {"wf_shadow", "sm_90", 64, 256, nullptr, nullptr, 72, 0},
         {"wf_next_bounce", "sm_90", 64, 256, nullptr, nullptr},
