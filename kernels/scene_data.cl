@@ -175,6 +175,10 @@ static inline void scene_data(SceneData* out, CLP_SCENE_PARAMS constant const Fr
 #endif
 #ifdef CLP_HAS_ALPHA
     sc.alpha.sd = sc.sd;
+    /* The layout the program was built for (the host checks that it is the
+     * scene's): tested at run time inside the walk, the layout's flags cost
+     * the closest-hit walk 3 registers at sm_90, past its budget of 64. */
+    sc.alpha.sd.flags = CLP_ALPHA_ATTRIBUTES;
     sc.alpha.tri_material = tri_material;
 #endif
     *out = sc;

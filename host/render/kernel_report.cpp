@@ -107,12 +107,9 @@ const std::vector<KernelBudget>& kernel_budgets() {
         {"batch_trace_any", "sm_90", 64, 256, nullptr, nullptr},
         // The wavefront's kernels are held to the traversal kernels' budget,
         // but for the shading kernels of glTF materials (textures, two GGX
-        // lobes), which may take half as many registers again. Not met yet,
-        // held at the figures of the 63-program gate (sm_90, ptxas 13.0):
-        // the closest-hit walk of alpha-masked scenes (the alpha test inside
-        // the leaf test).
+        // lobes), which may take half as many registers again.
         {"wf_camera", "sm_90", 64, 256, nullptr, nullptr},
-        {"wf_trace", "sm_90", 64, 256, nullptr, nullptr, 67, 0},
+        {"wf_trace", "sm_90", 64, 256, nullptr, nullptr},
         {"wf_shade", "sm_90", 64, 256, nullptr, "-DCLP_HAS_MAT_GLTF"},
         {"wf_shade", "sm_90", 96, 256, "-DCLP_HAS_MAT_GLTF", nullptr},
         {"wf_light", "sm_90", 64, 256, nullptr, nullptr},
