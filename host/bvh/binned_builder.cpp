@@ -9,6 +9,7 @@
 #include <system_error>
 #include <thread>
 
+#include "bvh/binning.hpp"
 #include "bvh/build_simd.hpp"
 #include "util/error.hpp"
 
@@ -33,59 +34,10 @@ void fork_join(int threads, const std::function<void(int)>& f) {
 
 namespace {
 
-constexpr int kMaxBins = 256;
 // Nodes over at least this many triangles are binned and partitioned by all
 // threads; smaller subtrees are built whole, one per thread. A size, not a
 // share of the threads, so the tree is the same for every thread count.
 constexpr std::uint32_t kBigNode = 1u << 14;
-
-// Per axis, the bins' boxes and counts. A node over at least as many
-// triangles as bins clears and fills them all (clear, then bin_refs); a
-// smaller node fills only the bins it occupies, each written whole by its
-// first triangle (bin_refs_sparse), and marks them in `occupied`, so nothing
-// needs clearing: its SAH sweep visits only those bins (the same choice as
-// visiting all: the costs between two occupied bins do not change, and the
-// sweep keeps the first of equal costs).
-struct Bins {
-    Box4 box[3][kMaxBins];
-    std::uint32_t count[3][kMaxBins];
-    std::uint64_t occupied[3][kMaxBins / 64];
-
-    void clear(int bins) {
-        for (int a = 0; a < 3; ++a)
-            for (int k = 0; k < bins; ++k) {
-                box[a][k] = Box4{};
-                count[a][k] = 0;
-            }
-    }
-    void merge(const Bins& o, int bins) {
-        for (int a = 0; a < 3; ++a)
-            for (int k = 0; k < bins; ++k) {
-                box[a][k].grow(o.box[a][k]);
-                count[a][k] += o.count[a][k];
-            }
-    }
-};
-
-// The bins an SAH sweep visits on one axis, in order.
-struct BinList {
-    std::uint8_t bin[kMaxBins];
-    int size = 0;
-};
-
-// All bins, 0 .. bins - 1.
-void list_all(int bins, BinList& l) {
-    for (int k = 0; k < bins; ++k) l.bin[k] = std::uint8_t(k);
-    l.size = bins;
-}
-
-// The occupied bins, in increasing order, from the bit masks.
-void list_occupied(const std::uint64_t* words, int bins, BinList& l) {
-    l.size = 0;
-    for (int w = 0; w * 64 < bins; ++w)
-        for (std::uint64_t m = words[w]; m; m &= m - 1)
-            l.bin[l.size++] = std::uint8_t(w * 64 + __builtin_ctzll(m));
-}
 
 // A subtree still to build: records [begin, end), in the scatter array when in_tmp.
 struct Range {
@@ -100,78 +52,6 @@ struct Decision {
     enum Kind { Leaf, Sah, Median } kind = Leaf;
     int axis = 0, bin = 0;
 };
-
-inline F4 centroid(F4 lo, F4 hi) {
-    const F4 half = splat(0.5f);
-    return lo * half + hi * half;  // not (lo + hi) / 2: no overflow near the float range's ends
-}
-
-// The mapping from a centroid to its bin on each axis (Wald 2007: equal slabs
-// of the node's centroid bounds). Binning and partitioning both use it, so a
-// partition puts exactly the binned counts on each side.
-struct BinMap {
-    F4 lo, scale, top;
-    BinMap(const Box4& cbox, int bins) {
-        // One division per lane, as b / max(extent, 1e-30) per axis; lane 3 unused.
-        const F4 e = max4(cbox.hi - cbox.lo, splat(1e-30f));
-        lo = cbox.lo;
-        alignas(16) float sc[4];
-        store4(sc, splat(float(bins)) / e);
-        sc[3] = 0.0f;
-        scale = load4(sc);
-        top = splat(float(bins - 1));
-    }
-    void operator()(F4 c, std::int32_t idx[4]) const { bin_index4((c - lo) * scale, top, idx); }
-};
-
-// Bins records [begin, end) into cleared bins.
-void bin_refs(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, Bins& bins) {
-    Box4* b0 = bins.box[0];
-    Box4* b1 = bins.box[1];
-    Box4* b2 = bins.box[2];
-    std::uint32_t* c0 = bins.count[0];
-    std::uint32_t* c1 = bins.count[1];
-    std::uint32_t* c2 = bins.count[2];
-    for (std::uint32_t i = begin; i < end; ++i) {
-        const F4 lo = load3(r[i].lo), hi = load3(r[i].hi);
-        int k0, k1, k2;
-        bin_index3((centroid(lo, hi) - map.lo) * map.scale, map.top, k0, k1, k2);
-        b0[k0].grow(lo, hi);
-        ++c0[k0];
-        b1[k1].grow(lo, hi);
-        ++c1[k1];
-        b2[k2].grow(lo, hi);
-        ++c2[k2];
-    }
-}
-
-// bin_refs for a node over fewer triangles than bins: the first triangle in a
-// bin writes it, the occupied bins are marked; nothing needs clearing before.
-void bin_refs_sparse(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, int bins, Bins& b) {
-    for (int a = 0; a < 3; ++a)
-        for (int w = 0; w * 64 < bins; ++w) b.occupied[a][w] = 0;
-    auto put = [&b](int a, int k, F4 lo, F4 hi) {
-        std::uint64_t& word = b.occupied[a][k >> 6];
-        const std::uint64_t bit = std::uint64_t(1) << (k & 63);
-        if (word & bit) {
-            b.box[a][k].grow(lo, hi);
-            ++b.count[a][k];
-        } else {
-            word |= bit;
-            b.box[a][k].lo = lo;
-            b.box[a][k].hi = hi;
-            b.count[a][k] = 1;
-        }
-    };
-    for (std::uint32_t i = begin; i < end; ++i) {
-        const F4 lo = load3(r[i].lo), hi = load3(r[i].hi);
-        int k0, k1, k2;
-        bin_index3((centroid(lo, hi) - map.lo) * map.scale, map.top, k0, k1, k2);
-        put(0, k0, lo, hi);
-        put(1, k1, lo, hi);
-        put(2, k2, lo, hi);
-    }
-}
 
 class Builder {
 public:
@@ -263,26 +143,24 @@ private:
         F4 lo = splat(std::numeric_limits<float>::infinity()), hi = splat(-std::numeric_limits<float>::infinity());
         std::uint32_t cnt = 0;
         for (int j = m - 1; j > 0; --j) {  // right side areas, swept from the right
-            const int k = list.bin[j];
-            lo = min4(lo, box[k].lo);
-            hi = max4(hi, box[k].hi);
-            cnt += count[k];
+            lo = min4(lo, box[j].lo);
+            hi = max4(hi, box[j].hi);
+            cnt += count[j];
             right_cost[j] = cnt ? area_of_extent(hi - lo) * float(cnt) : 0.0f;
         }
         lo = splat(std::numeric_limits<float>::infinity());
         hi = splat(-std::numeric_limits<float>::infinity());
         cnt = 0;
         for (int j = 0; j < m - 1; ++j) {
-            const int k = list.bin[j];
-            lo = min4(lo, box[k].lo);
-            hi = max4(hi, box[k].hi);
-            cnt += count[k];
+            lo = min4(lo, box[j].lo);
+            hi = max4(hi, box[j].hi);
+            cnt += count[j];
             if (cnt == 0 || cnt == n) continue;
             const float c = area_of_extent(hi - lo) * float(cnt) + right_cost[j + 1];
             if (c < best_cost) {
                 best_cost = c;
                 best_axis = a;
-                best_bin = k;
+                best_bin = list.bin[j];
             }
         }
     }
@@ -322,8 +200,7 @@ private:
     static void child_boxes(const Bins& bins, const BinList& list, const Decision& d, Box4& left, Box4& right) {
         left = right = Box4{};
         for (int j = 0; j < list.size; ++j) {
-            const int k = list.bin[j];
-            (k <= d.bin ? left : right).grow(bins.box[d.axis][k]);
+            (list.bin[j] <= d.bin ? left : right).grow(bins.box[d.axis][j]);
         }
     }
 
@@ -486,8 +363,7 @@ private:
                 r,
                 [&](Bins& b, BinList* l) {
                     if (n < dense_from) {
-                        bin_refs_sparse(a, r.begin, r.end, map, opt_.bins, b);
-                        for (int ax = 0; ax < 3; ++ax) list_occupied(b.occupied[ax], opt_.bins, l[ax]);
+                        bin_refs_sparse(a, r.begin, r.end, map, b, l);
                     } else {
                         b.clear(opt_.bins);
                         bin_refs(a, r.begin, r.end, map, b);
