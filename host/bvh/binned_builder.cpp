@@ -94,7 +94,10 @@ private:
 
     Ref* refs(const Range& r) const { return r.in_tmp ? tmp_ : main_; }
 
+    // Its records end in the main array (partitions alternate between the two).
     void leaf(const Range& r) {
+        if (r.in_tmp)
+            for (std::uint32_t i = r.begin; i < r.end; ++i) main_[i] = tmp_[i];
         TreeNode& n = nodes_[r.slot];
         store_box(n, r.box);
         n.first = r.begin;
@@ -341,7 +344,8 @@ private:
         }
     }
 
-    // A whole subtree on one thread: depth first, partitions in place. Returns its leaf count.
+    // A whole subtree on one thread: depth first, each SAH partition scattered
+    // into the other array (a median split stays in place). Returns its leaf count.
     std::size_t subtree(const Range& root, Bins& bins) {
         Range stack[2 * CLP_BVH_MAX_DEPTH + 4];
         BinList lists[3];
@@ -378,35 +382,21 @@ private:
             }
             Range left{}, right{};
             std::uint32_t m = r.begin;
+            bool in_tmp = r.in_tmp;
             if (d.kind == Decision::Sah) {
-                std::uint32_t i = r.begin, j = r.end;
-                Box4 lcb, rcb;
-                while (i < j) {
-                    const F4 lo = load3(a[i].lo), hi = load3(a[i].hi), c = centroid(lo, hi);
-                    alignas(16) std::int32_t idx[4];
-                    map(c, idx);
-                    if (idx[d.axis] <= d.bin) {
-                        lcb.grow_point(c);
-                        ++i;
-                    } else {
-                        rcb.grow_point(c);
-                        std::swap(a[i], a[--j]);
-                    }
-                }
-                m = i;
-                left.cbox = lcb;
-                right.cbox = rcb;
+                // Into the other array: the children live there from now on.
+                m = partition_refs(a, r.in_tmp ? main_ : tmp_, r.begin, r.end, map, d.axis, d.bin, left.cbox, right.cbox);
+                in_tmp = !r.in_tmp;
                 child_boxes(bins, lists[d.axis], d, left.box, right.box);
             } else {
                 m = median_split(r, d.axis, left, right);
             }
-            set_children(r, m, r.in_tmp, left, right);
+            set_children(r, m, in_tmp, left, right);
             interior(r, m);
             stack[sp++] = right;
             stack[sp++] = left;
         }
         leaves += leaf_count;
-        if (root.in_tmp) std::memcpy(main_ + root.begin, tmp_ + root.begin, (root.end - root.begin) * sizeof(Ref));
         return leaf_count;
     }
 };
@@ -419,7 +409,7 @@ Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& o
     tree.ref_count = n;
     tree.refs.reset(new Ref[n]);  // left uninitialised: the threads below touch it first
     tree.nodes.reset(new TreeNode[2 * n]);
-    std::unique_ptr<Ref[]> tmp(n >= kBigNode ? new Ref[n] : nullptr);
+    std::unique_ptr<Ref[]> tmp(new Ref[n]);
 
     // Records, root bounds, and the first non-finite triangle, per chunk.
     const int T = opt.threads;

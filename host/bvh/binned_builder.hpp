@@ -2,8 +2,9 @@
 // The binned-SAH builder behind build_bvh (bvh.hpp): a binary tree over
 // triangle references, before flattening into the device layout.
 //
-// Memory: one 32-byte record per triangle (its box and index), reordered in
-// place as nodes split, plus a second array the top levels scatter into; the
+// Memory: one 32-byte record per triangle (its box and index), and a second
+// array of them: a split scatters its node's records from one to the other
+// (a median split reorders them in place); a leaf's end in the first. The
 // tree's nodes live in one array allocated up front. A subtree over n
 // triangles whose root is slot s owns slots [s, s + 2n - 1) (a binary tree
 // with at least one triangle per leaf has at most 2n - 1 nodes): its left

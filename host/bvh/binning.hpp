@@ -71,6 +71,10 @@ struct BinMap {
         top = splat(float(bins - 1));
     }
     void operator()(F4 c, std::int32_t idx[4]) const { bin_index4((c - lo) * scale, top, idx); }
+    // Whether centroid c's bin on axis is <= bin, for bin < bins - 1: the
+    // bin index is the truncation of (c - lo) * scale clamped to [0, top]
+    // (NaN to 0), so it exceeds bin exactly when that product is >= bin + 1.
+    bool left_of(F4 c, int axis, int bin) const { return !((ge_mask((c - lo) * scale, splat(float(bin + 1))) >> axis) & 1); }
 };
 
 // Bins records [begin, end) into cleared bins (map.bins of them per axis):
@@ -87,5 +91,13 @@ void bin_refs_avx(const Ref* r, std::uint32_t begin, std::uint32_t end, const Bi
 // their boxes and counts; nothing needs clearing before.
 void bin_refs_sparse(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, Bins& b,
                      BinList* lists);
+
+// Records [begin, end) of src into dst: those whose centroid's bin on axis
+// is <= bin to the front, in order, the others to the back, in reverse order.
+// Returns where the back starts; lcb, rcb: the two sides' centroid bounds.
+// Without a branch per record, where an in-place partition mispredicts
+// about every other record.
+std::uint32_t partition_refs(const Ref* src, Ref* dst, std::uint32_t begin, std::uint32_t end, const BinMap& map,
+                             int axis, int bin, Box4& lcb, Box4& rcb);
 
 }  // namespace clpath::bvh_build
