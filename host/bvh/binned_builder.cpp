@@ -407,9 +407,9 @@ Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& o
     const std::size_t n = vertices.size() / 3;
     Tree tree;
     tree.ref_count = n;
-    tree.refs.reset(new Ref[n]);  // left uninitialised: the threads below touch it first
-    tree.nodes.reset(new TreeNode[2 * n]);
-    std::unique_ptr<Ref[]> tmp(new Ref[n]);
+    tree.refs = big_array<Ref>(n);  // left uninitialised: the threads below touch it first
+    tree.nodes = big_array<TreeNode>(2 * n);
+    const BigArray<Ref> tmp = big_array<Ref>(n);
 
     // Records, root bounds, and the first non-finite triangle, per chunk.
     const int T = opt.threads;

@@ -18,6 +18,7 @@
 
 #include <glm/glm.hpp>
 
+#include "bvh/big_arrays.hpp"
 #include "bvh/bvh.hpp"
 
 namespace clpath::bvh_build {
@@ -44,8 +45,8 @@ struct Subtree {
 };
 
 struct Tree {
-    std::unique_ptr<TreeNode[]> nodes;  // slot 0 is the root; unused slots are left unwritten
-    std::unique_ptr<Ref[]> refs;        // in leaf order
+    BigArray<TreeNode> nodes;  // slot 0 is the root; unused slots are left unwritten
+    BigArray<Ref> refs;        // in leaf order
     std::size_t ref_count = 0;
     std::size_t leaf_count = 0;
     std::vector<Subtree> subtrees;  // left to right (by first record)

@@ -111,6 +111,8 @@ void flatten(const bvh_build::Tree& t, Bvh& bvh, float traversal_cost, int threa
         starts.push_back({s.slot, int(total), i});
         total += s.leaves - 1;
     }
+    bvh.nodes.reserve(total);
+    bvh_build::advise_huge_pages(bvh.nodes.data(), total * sizeof(BvhNode64));
     bvh.nodes.resize(total);
     BvhNode64* out = bvh.nodes.data();
     std::vector<FlatStats> part(starts.size());
@@ -167,6 +169,8 @@ Bvh build_bvh(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& opt
     const bvh_build::Tree tree = bvh_build::build_tree(vertices, opt);
     Bvh bvh;
     flatten(tree, bvh, opt.traversal_cost, opt.threads);
+    bvh.triangles.reserve(n);
+    bvh_build::advise_huge_pages(bvh.triangles.data(), n * sizeof(TriVerts));
     bvh.triangles.resize(n);
     const bvh_build::Ref* refs = tree.refs.get();
     bvh_build::fork_join(opt.threads, [&](int t) {
