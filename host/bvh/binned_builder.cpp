@@ -257,7 +257,6 @@ private:
         fork_join(T, [&](int t) {
             for (std::size_t i = 0; i < L; ++i) {
                 Bins& b = part[i * std::size_t(T) + std::size_t(t)];
-                b.clear(opt_.bins);
                 bin_refs(refs(level[i]), chunk(i, t), chunk(i, t + 1), maps[i], b);
             }
         });
@@ -369,7 +368,6 @@ private:
                     if (n < dense_from) {
                         bin_refs_sparse(a, r.begin, r.end, map, b, l);
                     } else {
-                        b.clear(opt_.bins);
                         bin_refs(a, r.begin, r.end, map, b);
                         for (int ax = 0; ax < 3; ++ax) list_all(opt_.bins, l[ax]);
                     }

@@ -13,11 +13,15 @@
 
 namespace clpath::bvh_build {
 
-// Alternate triangles go to two sets of bins, merged at the end: a run of
-// triangles in one bin (neighbours in a mesh often are) would otherwise chain
-// every update through the same memory. bin_refs_avx splits them the same way
-// and merges in the same order, so the two agree bit for bit.
+constexpr std::uint32_t kTwoSetsFrom = 128;
+
+// From kTwoSetsFrom triangles on, alternate triangles go to two sets of bins,
+// merged at the end: a run of triangles in one bin (neighbours in a mesh
+// often are) would otherwise chain every update through the same memory.
+// bin_refs_avx splits them the same way and merges in the same order, so the
+// two agree bit for bit.
 void bin_refs_portable(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, Bins& bins) {
+    bins.clear(map.bins);
     struct Raw {  // Box4 without its initialisers: only map.bins of them are set, below
         F4 lo, hi;
     };
@@ -45,11 +49,12 @@ void bin_refs_portable(const Ref* r, std::uint32_t begin, std::uint32_t end, con
         ++c2[k2];
     };
     std::uint32_t i = begin;
-    for (; i + 1 < end; i += 2) {
-        put(i, bins.box[0], bins.box[1], bins.box[2], bins.count[0], bins.count[1], bins.count[2]);
-        put(i + 1, aux_box[0], aux_box[1], aux_box[2], aux_count[0], aux_count[1], aux_count[2]);
-    }
-    if (i < end) put(i, bins.box[0], bins.box[1], bins.box[2], bins.count[0], bins.count[1], bins.count[2]);
+    if (end - begin >= kTwoSetsFrom)
+        for (; i + 1 < end; i += 2) {
+            put(i, bins.box[0], bins.box[1], bins.box[2], bins.count[0], bins.count[1], bins.count[2]);
+            put(i + 1, aux_box[0], aux_box[1], aux_box[2], aux_count[0], aux_count[1], aux_count[2]);
+        }
+    for (; i < end; ++i) put(i, bins.box[0], bins.box[1], bins.box[2], bins.count[0], bins.count[1], bins.count[2]);
     for (int a = 0; a < 3; ++a)
         for (int k = 0; k < map.bins; ++k) {
             bins.box[a][k].grow(aux_box[a][k].lo, aux_box[a][k].hi);
@@ -121,25 +126,23 @@ __attribute__((target("avx"))) void bin_refs_avx(const Ref* r, std::uint32_t beg
     float* box[3] = {reinterpret_cast<float*>(bins.box[0]), reinterpret_cast<float*>(bins.box[1]),
                      reinterpret_cast<float*>(bins.box[2])};
     static_assert(sizeof(Box4) == 32, "a bin's box is lo then hi, 8 floats");
-    std::uint32_t* c0 = bins.count[0];
-    std::uint32_t* c1 = bins.count[1];
-    std::uint32_t* c2 = bins.count[2];
+    std::uint32_t* c[3] = {bins.count[0], bins.count[1], bins.count[2]};
+    std::uint32_t *c0 = c[0], *c1 = c[1], *c2 = c[2];
     alignas(16) float m[12];
     store4(m, map.lo);
     store4(m + 4, map.scale);
     store4(m + 8, map.top);
     const __m128 mlo = _mm_load_ps(m), mscale = _mm_load_ps(m + 4), mtop = _mm_load_ps(m + 8);
     const __m128 half = _mm_set1_ps(0.5f);
-    for (int a = 0; a < 3; ++a)
-        for (int k = 0; k < map.bins; ++k)
-            _mm256_storeu_ps(box[a] + 8 * k, _mm256_xor_ps(_mm256_loadu_ps(box[a] + 8 * k), flip_lo));
     alignas(32) float aux[3][8 * kMaxBins];
     std::uint32_t aux_count[3][kMaxBins];
     const __m256 empty = _mm256_set1_ps(-std::numeric_limits<float>::infinity());  // a negated empty box
     for (int a = 0; a < 3; ++a)
         for (int k = 0; k < map.bins; ++k) {
             _mm256_store_ps(aux[a] + 8 * k, empty);
+            _mm256_storeu_ps(box[a] + 8 * k, empty);
             aux_count[a][k] = 0;
+            c[a][k] = 0;
         }
     auto put = [&](std::uint32_t i, float* b0, float* b1, float* b2, std::uint32_t* n0, std::uint32_t* n1,
                    std::uint32_t* n2) __attribute__((target("avx"))) {
@@ -161,11 +164,12 @@ __attribute__((target("avx"))) void bin_refs_avx(const Ref* r, std::uint32_t beg
         ++n2[k2];
     };
     std::uint32_t i = begin;
-    for (; i + 1 < end; i += 2) {
-        put(i, box[0], box[1], box[2], c0, c1, c2);
-        put(i + 1, aux[0], aux[1], aux[2], aux_count[0], aux_count[1], aux_count[2]);
-    }
-    if (i < end) put(i, box[0], box[1], box[2], c0, c1, c2);
+    if (end - begin >= kTwoSetsFrom)
+        for (; i + 1 < end; i += 2) {
+            put(i, box[0], box[1], box[2], c0, c1, c2);
+            put(i + 1, aux[0], aux[1], aux[2], aux_count[0], aux_count[1], aux_count[2]);
+        }
+    for (; i < end; ++i) put(i, box[0], box[1], box[2], c0, c1, c2);
     for (int a = 0; a < 3; ++a)
         for (int k = 0; k < map.bins; ++k) {
             const __m256 merged = _mm256_max_ps(_mm256_loadu_ps(box[a] + 8 * k), _mm256_load_ps(aux[a] + 8 * k));

@@ -11,7 +11,7 @@ namespace clpath::bvh_build {
 constexpr int kMaxBins = 256;
 // Per axis, the bins' boxes and counts, at their position in the axis's
 // BinList (below). A node over at least as many triangles as bins clears and
-// fills them all (clear, then bin_refs; position = bin); a smaller node keeps
+// fills them all (bin_refs; position = bin); a smaller node keeps
 // only the bins it occupies, packed in increasing order (bin_refs_sparse), so
 // nothing needs clearing: its SAH sweep visits only those bins (the same
 // choice as visiting all: the costs between two occupied bins do not change,
@@ -77,7 +77,7 @@ struct BinMap {
     bool left_of(F4 c, int axis, int bin) const { return !((ge_mask((c - lo) * scale, splat(float(bin + 1))) >> axis) & 1); }
 };
 
-// Bins records [begin, end) into cleared bins (map.bins of them per axis):
+// Bins records [begin, end) into bins (map.bins of them per axis, cleared first):
 // bin_refs_avx where the CPU has AVX, else bin_refs_portable. Both give the
 // same bins bit for bit.
 void bin_refs(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, Bins& bins);

@@ -65,11 +65,9 @@ TEST(Binning, AvxAndPortableAgreeBitForBit) {
     if (!avx_available()) GTEST_SKIP() << "no AVX on this CPU";
     const std::vector<Ref> refs = random_refs(5000, 3);
     for (int bins : {2, 16, 64, 256})
-        for (std::size_t n : {std::size_t(bins), std::size_t(bins) + 1, std::size_t(1000), refs.size()}) {
+        for (std::size_t n : {std::size_t(bins), std::size_t(bins) + 1, std::size_t(127), std::size_t(128), std::size_t(1000), refs.size()}) {
             const BinMap map(centroid_bounds(refs, 0, n), bins);
             auto a = std::make_unique<Bins>(), b = std::make_unique<Bins>();
-            a->clear(bins);
-            b->clear(bins);
             bin_refs_portable(refs.data(), 0, std::uint32_t(n), map, *a);
             bin_refs_avx(refs.data(), 0, std::uint32_t(n), map, *b);
             std::uint32_t total = 0;
@@ -91,7 +89,6 @@ TEST(Binning, SparseBinsAreTheOccupiedBinsInOrder) {
             const std::uint32_t b0 = std::uint32_t(begin), e0 = std::uint32_t(begin + n);
             const BinMap map(centroid_bounds(refs, begin, begin + n), bins);
             auto dense = std::make_unique<Bins>(), sparse = std::make_unique<Bins>();
-            dense->clear(bins);
             bin_refs(refs.data(), b0, e0, map, *dense);
             BinList lists[3];
             bin_refs_sparse(refs.data(), b0, e0, map, *sparse, lists);
