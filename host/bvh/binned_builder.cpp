@@ -365,7 +365,9 @@ private:
             const Decision d = decide(
                 r,
                 [&](Bins& b, BinList* l) {
-                    if (n < dense_from) {
+                    if (n == 2) {
+                        bin_refs_pair(a, r.begin, map, b, l);
+                    } else if (n < dense_from) {
                         bin_refs_sparse(a, r.begin, r.end, map, b, l);
                     } else {
                         bin_refs(a, r.begin, r.end, map, b);

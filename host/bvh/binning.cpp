@@ -106,6 +106,37 @@ void bin_refs_sparse(const Ref* r, std::uint32_t begin, std::uint32_t end, const
     }
 }
 
+void bin_refs_pair(const Ref* r, std::uint32_t begin, const BinMap& map, Bins& b, BinList* lists) {
+    const F4 lo0 = load3(r[begin].lo), hi0 = load3(r[begin].hi), lo1 = load3(r[begin + 1].lo),
+             hi1 = load3(r[begin + 1].hi);
+    int k0[3], k1[3];
+    bin_index3((centroid(lo0, hi0) - map.lo) * map.scale, map.top, k0[0], k0[1], k0[2]);
+    bin_index3((centroid(lo1, hi1) - map.lo) * map.scale, map.top, k1[0], k1[1], k1[2]);
+    for (int a = 0; a < 3; ++a) {
+        BinList& l = lists[a];
+        Box4* box = b.box[a];
+        std::uint32_t* count = b.count[a];
+        if (k0[a] == k1[a]) {  // one bin, grown in record order as bin_refs_sparse grows it
+            l.size = 1;
+            l.bin[0] = std::uint8_t(k0[a]);
+            box[0] = Box4{};
+            box[0].grow(lo0, hi0);
+            box[0].grow(lo1, hi1);
+            count[0] = 2;
+            continue;
+        }
+        const bool swap = k1[a] < k0[a];
+        l.size = 2;
+        l.bin[0] = std::uint8_t(swap ? k1[a] : k0[a]);
+        l.bin[1] = std::uint8_t(swap ? k0[a] : k1[a]);
+        box[swap ? 1 : 0] = Box4{};
+        box[swap ? 1 : 0].grow(lo0, hi0);
+        box[swap ? 0 : 1] = Box4{};
+        box[swap ? 0 : 1].grow(lo1, hi1);
+        count[0] = count[1] = 1;
+    }
+}
+
 #if CLPATH_BVH_HAVE_AVX_PATH
 bool avx_available() {
     static const bool yes = __builtin_cpu_supports("avx");

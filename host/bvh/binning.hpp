@@ -92,6 +92,10 @@ void bin_refs_avx(const Ref* r, std::uint32_t begin, std::uint32_t end, const Bi
 void bin_refs_sparse(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, Bins& b,
                      BinList* lists);
 
+// bin_refs_sparse for records begin and begin + 1, the same result sooner
+// (a node over two triangles is the commonest kind).
+void bin_refs_pair(const Ref* r, std::uint32_t begin, const BinMap& map, Bins& b, BinList* lists);
+
 // Records [begin, end) of src into dst: those whose centroid's bin on axis
 // is <= bin to the front, in order, the others to the back, in reverse order.
 // Returns where the back starts; lcb, rcb: the two sides' centroid bounds.

@@ -81,6 +81,26 @@ TEST(Binning, AvxAndPortableAgreeBitForBit) {
         }
 }
 
+TEST(Binning, PairBinsAreTheSparseBins) {
+    const std::vector<Ref> refs = random_refs(400, 9);
+    for (int bins : {2, 16, 200})
+        for (std::uint32_t b0 = 0; b0 + 1 < refs.size(); b0 += 2) {
+            const BinMap map(centroid_bounds(refs, b0, b0 + 2), bins);
+            auto pair = std::make_unique<Bins>(), sparse = std::make_unique<Bins>();
+            BinList lp[3], ls[3];
+            bin_refs_pair(refs.data(), b0, map, *pair, lp);
+            bin_refs_sparse(refs.data(), b0, b0 + 2, map, *sparse, ls);
+            for (int ax = 0; ax < 3; ++ax) {
+                ASSERT_EQ(lp[ax].size, ls[ax].size);
+                for (int j = 0; j < ls[ax].size; ++j) {
+                    EXPECT_EQ(lp[ax].bin[j], ls[ax].bin[j]);
+                    EXPECT_EQ(pair->count[ax][j], sparse->count[ax][j]);
+                    expect_same_box(pair->box[ax][j], sparse->box[ax][j], true);
+                }
+            }
+        }
+}
+
 TEST(Binning, SparseBinsAreTheOccupiedBinsInOrder) {
     const std::vector<Ref> refs = random_refs(300, 5);
     for (int bins : {8, 16, 200}) {
