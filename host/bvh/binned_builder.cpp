@@ -38,6 +38,8 @@ namespace {
 // threads; smaller subtrees are built whole, one per thread. A size, not a
 // share of the threads, so the tree is the same for every thread count.
 constexpr std::uint32_t kBigNode = 1u << 14;
+// The records a thread bins or scatters at a time in those nodes.
+constexpr std::uint32_t kChunk = 1u << 13;
 
 // A subtree still to build: records [begin, end), in the scatter array when in_tmp.
 struct Range {
@@ -239,45 +241,59 @@ private:
 
     // The nodes of one level large enough for all threads, together (one
     // fork-join per pass, not per node): parallel binning, then a stable
-    // partition scattered into the other array (the same result however the
-    // records are cut into chunks). Children this large form the next level,
-    // the others become tasks.
+    // partition scattered into the other array, both by fixed-size chunks
+    // (so the result does not depend on the threads). Children this large
+    // form the next level, the others become tasks.
     void big_level(const std::vector<Range>& level, std::vector<Range>& next, std::vector<Range>& tasks) {
         const int T = opt_.threads;
         const std::size_t L = level.size();
         top_interior += L;  // a large node is never a leaf
-        auto chunk = [&](std::size_t i, int t) {
-            const Range& r = level[i];
-            return r.begin + std::uint32_t(std::uint64_t(r.end - r.begin) * std::uint32_t(t) / std::uint32_t(T));
+        // Each node cut into chunks of a fixed size, whatever the thread count,
+        // handed out one at a time: a thread that starts late or is preempted
+        // (a busy machine) takes fewer, and the bins merge in chunk order.
+        struct Chunk {
+            std::uint32_t node, begin, end;
+        };
+        std::vector<Chunk> chunks;
+        std::vector<std::size_t> first_chunk(L + 1);
+        for (std::size_t i = 0; i < L; ++i) {
+            first_chunk[i] = chunks.size();
+            for (std::uint32_t b = level[i].begin; b < level[i].end; b += std::min(kChunk, level[i].end - b))
+                chunks.push_back({std::uint32_t(i), b, b + std::min(kChunk, level[i].end - b)});
+        }
+        first_chunk[L] = chunks.size();
+        const std::size_t C = chunks.size();
+        auto each_chunk = [&](const std::function<void(std::size_t)>& f) {
+            std::atomic<std::size_t> next_chunk{0};
+            fork_join(int(std::min<std::size_t>(std::size_t(T), C)), [&](int) {
+                for (std::size_t c; (c = next_chunk.fetch_add(1)) < C;) f(c);
+            });
         };
         std::vector<BinMap> maps;
         maps.reserve(L);
         for (const Range& r : level) maps.emplace_back(r.cbox, opt_.bins);
-        std::vector<Bins> part(L * std::size_t(T));
-        fork_join(T, [&](int t) {
-            for (std::size_t i = 0; i < L; ++i) {
-                Bins& b = part[i * std::size_t(T) + std::size_t(t)];
-                bin_refs(refs(level[i]), chunk(i, t), chunk(i, t + 1), maps[i], b);
-            }
+        std::vector<Bins> part(C);
+        each_chunk([&](std::size_t c) {
+            const Chunk& ch = chunks[c];
+            bin_refs(refs(level[ch.node]), ch.begin, ch.end, maps[ch.node], part[c]);
         });
         struct Split {
             Decision d;
             Range left{}, right{};
-            std::vector<std::uint32_t> left_at, right_at;  // per chunk: where its records go
         };
         std::vector<Split> split(L);
+        std::vector<std::uint32_t> left_at(C), right_at(C);  // per chunk: where its records go
         auto total_bins = std::make_unique<Bins>();
         Bins& total = *total_bins;
         BinList lists[3];
         for (std::size_t i = 0; i < L; ++i) {
             const Range& r = level[i];
             Split& sp = split[i];
-            const Bins* p = &part[i * std::size_t(T)];
             sp.d = decide(
                 r,
                 [&](Bins& bins, BinList* lists) {
                     bins.clear(opt_.bins);
-                    for (int t = 0; t < T; ++t) bins.merge(p[t], opt_.bins);
+                    for (std::size_t c = first_chunk[i]; c < first_chunk[i + 1]; ++c) bins.merge(part[c], opt_.bins);
                     for (int a = 0; a < 3; ++a) list_all(opt_.bins, lists[a]);
                 },
                 total, lists);
@@ -285,42 +301,39 @@ private:
             // Each chunk's left count is known from its bins: scatter without a counting pass.
             child_boxes(total, lists[sp.d.axis], sp.d, sp.left.box, sp.right.box);
             std::uint32_t left_total = 0;
-            for (int t = 0; t < T; ++t)
-                for (int k = 0; k <= sp.d.bin; ++k) left_total += p[t].count[sp.d.axis][k];
-            sp.left_at.assign(std::size_t(T) + 1, r.begin);
-            sp.right_at.assign(std::size_t(T) + 1, r.begin + left_total);
-            for (int t = 0; t < T; ++t) {
+            for (int k = 0; k <= sp.d.bin; ++k) left_total += total.count[sp.d.axis][k];
+            std::uint32_t l_at = r.begin, r_at = r.begin + left_total;
+            for (std::size_t c = first_chunk[i]; c < first_chunk[i + 1]; ++c) {
                 std::uint32_t l = 0;
-                for (int k = 0; k <= sp.d.bin; ++k) l += p[t].count[sp.d.axis][k];
-                sp.left_at[t + 1] = sp.left_at[t] + l;
-                sp.right_at[t + 1] = sp.right_at[t] + (chunk(i, t + 1) - chunk(i, t) - l);
+                for (int k = 0; k <= sp.d.bin; ++k) l += part[c].count[sp.d.axis][k];
+                left_at[c] = l_at;
+                right_at[c] = r_at;
+                l_at += l;
+                r_at += chunks[c].end - chunks[c].begin - l;
             }
         }
-        std::vector<Box4> lc(L * std::size_t(T)), rc(L * std::size_t(T));
-        fork_join(T, [&](int t) {
-            for (std::size_t i = 0; i < L; ++i) {
-                const Split& sp = split[i];
-                if (sp.d.kind != Decision::Sah) continue;
-                const Range& r = level[i];
-                const Ref* src = refs(r);
-                Ref* dst = r.in_tmp ? main_ : tmp_;
-                std::uint32_t li = sp.left_at[t], ri = sp.right_at[t];
-                Box4 lcb, rcb;
-                for (std::uint32_t k = chunk(i, t); k < chunk(i, t + 1); ++k) {
-                    const F4 lo = load3(src[k].lo), hi = load3(src[k].hi), c = centroid(lo, hi);
-                    alignas(16) std::int32_t idx[4];
-                    maps[i](c, idx);
-                    if (idx[sp.d.axis] <= sp.d.bin) {
-                        dst[li++] = src[k];
-                        lcb.grow_point(c);
-                    } else {
-                        dst[ri++] = src[k];
-                        rcb.grow_point(c);
-                    }
+        std::vector<Box4> lc(C), rc(C);
+        each_chunk([&](std::size_t c) {
+            const Chunk& ch = chunks[c];
+            const Split& sp = split[ch.node];
+            if (sp.d.kind != Decision::Sah) return;
+            const Range& r = level[ch.node];
+            const Ref* src = refs(r);
+            Ref* dst = r.in_tmp ? main_ : tmp_;
+            std::uint32_t li = left_at[c], ri = right_at[c];
+            Box4 lcb, rcb;
+            for (std::uint32_t k = ch.begin; k < ch.end; ++k) {
+                const F4 lo = load3(src[k].lo), hi = load3(src[k].hi), cen = centroid(lo, hi);
+                if (maps[ch.node].left_of(cen, sp.d.axis, sp.d.bin)) {
+                    dst[li++] = src[k];
+                    lcb.grow_point(cen);
+                } else {
+                    dst[ri++] = src[k];
+                    rcb.grow_point(cen);
                 }
-                lc[i * std::size_t(T) + std::size_t(t)] = lcb;
-                rc[i * std::size_t(T) + std::size_t(t)] = rcb;
             }
+            lc[c] = lcb;
+            rc[c] = rcb;
         });
         for (std::size_t i = 0; i < L; ++i) {
             const Range& r = level[i];
@@ -328,11 +341,11 @@ private:
             std::uint32_t m;
             bool in_tmp = r.in_tmp;
             if (sp.d.kind == Decision::Sah) {
-                m = sp.right_at[0];
+                m = right_at[first_chunk[i]];
                 in_tmp = !r.in_tmp;
-                for (int t = 0; t < T; ++t) {
-                    sp.left.cbox.grow(lc[i * std::size_t(T) + std::size_t(t)]);
-                    sp.right.cbox.grow(rc[i * std::size_t(T) + std::size_t(t)]);
+                for (std::size_t c = first_chunk[i]; c < first_chunk[i + 1]; ++c) {
+                    sp.left.cbox.grow(lc[c]);
+                    sp.right.cbox.grow(rc[c]);
                 }
             } else {
                 m = median_split(r, sp.d.axis, sp.left, sp.right);  // a big node never becomes a leaf
