@@ -424,38 +424,43 @@ Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& o
     tree.nodes = big_array<TreeNode>(2 * n);
     const BigArray<Ref> tmp = big_array<Ref>(n);
 
-    // Records, root bounds, and the first non-finite triangle, per chunk.
+    // Records, root bounds, and the first non-finite triangle, per chunk of
+    // kChunk triangles, handed out one at a time (as the top levels' chunks).
     const int T = opt.threads;
-    std::vector<Box4> box(static_cast<std::size_t>(T)), cbox(static_cast<std::size_t>(T));
-    std::vector<std::size_t> bad(std::size_t(T), n);
+    const std::size_t C = (n + kChunk - 1) / kChunk;
+    std::vector<Box4> box(C), cbox(C);
+    std::vector<std::size_t> bad(C, n);
     Ref* refs = tree.refs.get();
-    fork_join(T, [&](int t) {
-        Box4 b, c;
-        for (std::size_t i = n * std::size_t(t) / std::size_t(T); i < n * std::size_t(t + 1) / std::size_t(T); ++i) {
-            const glm::vec3 &p = vertices[3 * i], &q = vertices[3 * i + 1], &s = vertices[3 * i + 2];
-            Ref& r = refs[i];
-            bool finite = true;
-            for (int a = 0; a < 3; ++a) {
-                r.lo[a] = std::min({p[a], q[a], s[a]});
-                r.hi[a] = std::max({p[a], q[a], s[a]});
-                finite = finite && std::isfinite(p[a]) && std::isfinite(q[a]) && std::isfinite(s[a]);
+    std::atomic<std::size_t> next_chunk{0};
+    fork_join(int(std::min<std::size_t>(std::size_t(T), C)), [&](int) {
+        for (std::size_t k; (k = next_chunk.fetch_add(1)) < C;) {
+            Box4 b, c;
+            for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
+                const glm::vec3 &p = vertices[3 * i], &q = vertices[3 * i + 1], &s = vertices[3 * i + 2];
+                Ref& r = refs[i];
+                bool finite = true;
+                for (int a = 0; a < 3; ++a) {
+                    r.lo[a] = std::min({p[a], q[a], s[a]});
+                    r.hi[a] = std::max({p[a], q[a], s[a]});
+                    finite = finite && std::isfinite(p[a]) && std::isfinite(q[a]) && std::isfinite(s[a]);
+                }
+                if (!finite && bad[k] == n) bad[k] = i;
+                r.prim = std::uint32_t(i);
+                r.pad = 0;
+                const F4 lo = load3(r.lo), hi = load3(r.hi);
+                b.grow(lo, hi);
+                c.grow_point(centroid(lo, hi));
             }
-            if (!finite && bad[t] == n) bad[t] = i;
-            r.prim = std::uint32_t(i);
-            r.pad = 0;
-            const F4 lo = load3(r.lo), hi = load3(r.hi);
-            b.grow(lo, hi);
-            c.grow_point(centroid(lo, hi));
+            box[k] = b;
+            cbox[k] = c;
         }
-        box[t] = b;
-        cbox[t] = c;
     });
     for (std::size_t i : bad)  // chunks in order: the first one found is the lowest index
         if (i < n) throw Error("BVH build: triangle " + std::to_string(i) + " has a non-finite vertex coordinate");
     Range root{};
-    for (int t = 0; t < T; ++t) {
-        root.box.grow(box[t]);
-        root.cbox.grow(cbox[t]);
+    for (std::size_t k = 0; k < C; ++k) {
+        root.box.grow(box[k]);
+        root.cbox.grow(cbox[k]);
     }
     root.begin = 0;
     root.end = std::uint32_t(n);

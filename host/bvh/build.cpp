@@ -173,20 +173,24 @@ Bvh build_bvh(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& opt
     bvh_build::advise_huge_pages(bvh.triangles.data(), n * sizeof(TriVerts));
     bvh.triangles.resize(n);
     const bvh_build::Ref* refs = tree.refs.get();
-    bvh_build::fork_join(opt.threads, [&](int t) {
-        const std::size_t T = std::size_t(opt.threads);
-        for (std::size_t i = n * std::size_t(t) / T; i < n * std::size_t(t + 1) / T; ++i) {
-            TriVerts& tv = bvh.triangles[i];
-            const std::size_t s = refs[i].prim;
-            for (int a = 0; a < 3; ++a) {
-                tv.v0[a] = vertices[3 * s][a];
-                tv.v1[a] = vertices[3 * s + 1][a];
-                tv.v2[a] = vertices[3 * s + 2][a];
+    // By chunks handed out one at a time, so a thread that starts late holds nobody up.
+    constexpr std::size_t kChunk = 1 << 14;
+    const std::size_t chunks = (n + kChunk - 1) / kChunk;
+    std::atomic<std::size_t> next_chunk{0};
+    bvh_build::fork_join(int(std::min<std::size_t>(std::size_t(opt.threads), chunks)), [&](int) {
+        for (std::size_t k; (k = next_chunk.fetch_add(1)) < chunks;)
+            for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
+                TriVerts& tv = bvh.triangles[i];
+                const std::size_t s = refs[i].prim;
+                for (int a = 0; a < 3; ++a) {
+                    tv.v0[a] = vertices[3 * s][a];
+                    tv.v1[a] = vertices[3 * s + 1][a];
+                    tv.v2[a] = vertices[3 * s + 2][a];
+                }
+                tv.prim = std::uint32_t(s);
+                tv.light = CLP_NO_LIGHT;  // the renderer marks emitters
+                tv.pad2 = 0;
             }
-            tv.prim = std::uint32_t(s);
-            tv.light = CLP_NO_LIGHT;  // the renderer marks emitters
-            tv.pad2 = 0;
-        }
     });
     bvh.stats.node_count = bvh.nodes.size();
     bvh.stats.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
