@@ -102,17 +102,15 @@ private:
             for (std::uint32_t i = r.begin; i < r.end; ++i) main_[i] = tmp_[i];
         TreeNode& n = nodes_[r.slot];
         store_box(n, r.box);
-        n.first = r.begin;
+        n.link = r.begin;
         n.count = r.end - r.begin;
-        n.right = 0;
     }
 
     void interior(const Range& r, std::uint32_t mid) {
         TreeNode& n = nodes_[r.slot];
         store_box(n, r.box);
-        n.first = 0;
         n.count = 0;
-        n.right = r.slot + 2 * (mid - r.begin);
+        n.link = r.slot + 2 * (mid - r.begin);
     }
 
     static void store_box(TreeNode& n, const Box4& b) {

@@ -30,12 +30,13 @@ struct alignas(16) Ref {
     float pad;
 };
 
+// 32 bytes: two to a cache line.
 struct TreeNode {
     float lo[3], hi[3];
-    std::uint32_t first;  // leaf: its first record
+    std::uint32_t link;   // leaf: its first record; interior: the right child's slot (the left's is the next)
     std::uint32_t count;  // leaf: records; 0 for an interior node
-    std::uint32_t right;  // interior: the right child's slot (the left child is the next slot)
 };
+static_assert(sizeof(TreeNode) == 32);
 
 // A subtree one thread built whole (the tree above them: the large nodes).
 struct Subtree {

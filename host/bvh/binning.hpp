@@ -70,7 +70,6 @@ struct BinMap {
         scale = load4(sc);
         top = splat(float(bins - 1));
     }
-    void operator()(F4 c, std::int32_t idx[4]) const { bin_index4((c - lo) * scale, top, idx); }
     // Whether centroid c's bin on axis is <= bin, for bin < bins - 1: the
     // bin index is the truncation of (c - lo) * scale clamped to [0, top]
     // (NaN to 0), so it exceeds bin exactly when that product is >= bin + 1.

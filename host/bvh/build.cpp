@@ -28,7 +28,7 @@ void set_slot(BvhNode64& node, int slot, const TreeNode& c, int child_index) {
         lo[a] = c.lo[a];
         hi[a] = c.hi[a];
     }
-    const int child = c.count ? ~int(c.first) : child_index;
+    const int child = c.count ? ~int(c.link) : child_index;
     (slot == 0 ? node.child0 : node.child1) = child;
     (slot == 0 ? node.count0 : node.count1) = c.count;
 }
@@ -59,7 +59,7 @@ int flatten_from(const TreeNode* tree, std::uint32_t root, int depth, int first,
         const TreeNode& b = tree[it.slot];
         st.cost += traversal_cost * node_area(b) / root_area;
         st.max_depth = std::max(st.max_depth, it.depth);
-        const std::uint32_t kids[2] = {it.slot + 1, b.right};
+        const std::uint32_t kids[2] = {it.slot + 1, b.link};
         for (int s = 0; s < 2; ++s) {
             const TreeNode& c = tree[kids[s]];
             int index = 0;
