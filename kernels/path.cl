@@ -59,7 +59,7 @@ static inline void path_start(PathState* ps, Ray ray, Rng rng) {
  *   path_light_eval   its BSDF value, MIS weight and shadow ray
  *   path_light_join   the contribution joins the path (or its shadow ray)
  *   path_scatter      the BSDF sample for the next ray (3 draws)
- *   path_follow       the path takes it */
+ *   path_follow       the path takes it (path_turn: all but the new origin) */
 
 /* A ray that left the scene: adds the environment it sees, MIS-weighted
  * against light sampling at the vertex it left. The path ends there. */
@@ -148,15 +148,21 @@ CLP_GPU_INLINE int path_scatter(Rng* rng, const Surface* s, float3 wo, BsdfSampl
     return material_sample(surface_material(s), s->ng, s->ns, wo, u1, u2, u3, bs surface_layers_arg(s));
 }
 
-/* The path goes on along the sampled direction bs->wi from s. */
-CLP_GPU_INLINE void path_follow(PathState* ps, const Surface* s, const BsdfSample* bs) {
+/* The path takes the sampled direction bs->wi: everything but where its
+ * next ray starts (path_follow). */
+CLP_GPU_INLINE void path_turn(PathState* ps, const BsdfSample* bs) {
     ps->beta *= bs->weight;
     ps->prev_pdf = bs->pdf;
     ps->prev_delta = bs->delta;
-    ps->prev_p = s->p;
-    ps->ray.o = offset_ray_origin(s->p, s->err, s->ng, bs->wi);
     ps->ray.d = bs->wi;
     ++ps->depth;
+}
+
+/* The path goes on along the sampled direction bs->wi from s. */
+CLP_GPU_INLINE void path_follow(PathState* ps, const Surface* s, const BsdfSample* bs) {
+    path_turn(ps, bs);
+    ps->prev_p = s->p;
+    ps->ray.o = offset_ray_origin(s->p, s->err, s->ng, bs->wi);
 }
 
 /* One bounce, every phase: returns 1 when the path goes on along ps->ray, 0

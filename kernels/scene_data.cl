@@ -115,7 +115,7 @@ static inline float3 instance_normal(global const float4* im, float3 n) {
  * of instance im, in world space, with its error bound. The vertices are
  * moved to world space first, so the point is interpolated exactly as on a
  * flattened copy (hit_point); each moved vertex is off its exact image by at
- * most gamma(4) (|M| |v| + |t|) per axis (four terms summed; PBR 3rd ed. bounds
+ * most gamma(4) (|M| |v| + |t|) per axis (four terms summed; PBR 3rd
  * ed., 3.9.4), and a convex combination of the vertices is off by at most
  * the largest of those, which is added to hit_point's bound. */
 static inline float3 instance_hit_point(global const float4* im, float3 v0, float3 v1, float3 v2, float b1, float b2,
@@ -132,6 +132,25 @@ static inline float3 instance_hit_point(global const float4* im, float3 v0, floa
 }
 #endif
 
+/* The point h found, in world space, with its rounding-error bound *err and
+ * the triangle's unit geometric normal *ng (of the winding; with instances,
+ * moved to world space by instance_normal). */
+static inline float3 surface_point(const SceneData* sc, const Hit* h, float3* ng, float3* err) {
+    global const TriVerts* tv = &sc->tris[h->tri];
+    float3 v0 = load3g(tv->v0), v1 = load3g(tv->v1), v2 = load3g(tv->v2);
+#ifdef CLP_HAS_INSTANCES
+    /* The triangle is in its instance's object space: the point and its
+     * error bound go to world space with the vertices (instance_hit_point),
+     * the normal with the inverse transpose. */
+    global const float4* im = (global const float4*)&sc->nodes[h->inst];
+    *ng = instance_normal(im, cross(v1 - v0, v2 - v0));
+    return instance_hit_point(im, v0, v1, v2, h->b1, h->b2, err);
+#else
+    *ng = normalize3(cross(v1 - v0, v2 - v0));
+    return hit_point(v0, v1, v2, h->b1, h->b2, err);
+#endif
+}
+
 /* The surface a hit found, written to *out (not returned: see no_hit in
  * traverse_leaf.cl). Forced inline on a GPU: the wavefront's shading kernels
  * each recompute it, and kept out of line it is handed back through the
@@ -139,22 +158,8 @@ static inline float3 instance_hit_point(global const float4* im, float3 v0, floa
 CLP_GPU_INLINE void surface_at(Surface* out, const SceneData* sc, const Hit* h, float3 d) {
     Surface s;
     s.tv = &sc->tris[h->tri];
-    float3 v0 = load3g(s.tv->v0), v1 = load3g(s.tv->v1), v2 = load3g(s.tv->v2);
-#ifdef CLP_HAS_INSTANCES
-    /* The triangle is in its instance's object space: the point and its
-     * error bound go to world space with the vertices (instance_surface),
-     * the normals with the inverse transpose. */
-    global const float4* im = (global const float4*)&sc->nodes[h->inst];
-    s.ng = instance_normal(im, cross(v1 - v0, v2 - v0));
-#else
-    s.ng = normalize3(cross(v1 - v0, v2 - v0));
-#endif
+    s.p = surface_point(sc, h, &s.ng, &s.err);
     s.front = dot(s.ng, d) < 0.0f;
-#ifdef CLP_HAS_INSTANCES
-    s.p = instance_hit_point(im, v0, v1, v2, h->b1, h->b2, &s.err);
-#else
-    s.p = hit_point(v0, v1, v2, h->b1, h->b2, &s.err);
-#endif
     uint mi = sc->tri_material[s.tv->prim];
     s.m = &sc->materials[mi];
     s.ns = s.ng;
@@ -162,6 +167,7 @@ CLP_GPU_INLINE void surface_at(Surface* out, const SceneData* sc, const Hit* h, 
     if (sc->fp->scene_flags & CLP_SCENE_NORMALS) {
     global const float* n = sc->normals + 9 * (size_t)s.tv->prim;
 #ifdef CLP_HAS_INSTANCES
+    global const float4* im = (global const float4*)&sc->nodes[h->inst];
     /* Each corner's normal moved and made unit before the interpolation, as
      * a flattened copy's are (normalising does not commute with it). */
     float3 ns = (1.0f - h->b1 - h->b2) * instance_normal(im, vload3(0, n)) + h->b1 * instance_normal(im, vload3(1, n)) +
@@ -222,6 +228,10 @@ static inline void scene_data(SceneData* out, CLP_SCENE_PARAMS constant const Fr
 #endif
 #ifdef CLP_HAS_ALPHA
     sc.alpha.sd = sc.sd;
+    /* The layout the program was built for (the host checks that it is the
+     * scene's): tested at run time inside the walk, the layout's flags cost
+     * the closest-hit walk 3 registers at sm_90, past its budget of 64. */
+    sc.alpha.sd.flags = CLP_ALPHA_ATTRIBUTES;
     sc.alpha.tri_material = tri_material;
 #endif
     *out = sc;

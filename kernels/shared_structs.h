@@ -135,6 +135,8 @@ enum { CLP_MATERIAL_KINDS(CLP_MAT_ENUMERATOR) CLP_MAT_KIND_COUNT };
 #define CLP_SCENE_TANGENTS 4u /* ... then tangents (xyz and sign, 12 floats per triangle) */
 #define CLP_SCENE_COLORS 8u   /* ... then vertex colours (RGBA, 12 floats per triangle) */
 #define CLP_SCENE_MATERIAL_EXT 16u /* the MaterialExt buffer holds one record per material (else one zero record) */
+/* The flags of the attribute buffer's layout. */
+#define CLP_SCENE_ATTRIBUTES (CLP_SCENE_UVS | CLP_SCENE_TANGENTS | CLP_SCENE_COLORS)
 
 /* Material flags. */
 #define CLP_MATF_TWO_SIDED_EMISSION 1u /* emits from the back face too */

@@ -295,18 +295,28 @@ kernel void wf_scatter(CLP_SCENE_PARAMS constant const FrameParams* fp, global f
     surface_at(&s, &sc, &h, d.xyz);
     BsdfSample bs;
     if (!path_scatter(&rng, &s, -d.xyz, &bs)) return;
-    /* What path_follow changes, read only now (not kept through the
+    /* What path_turn changes, read only now (not kept through the
      * sampling); what it replaces is not read. The radiance is not changed. */
     PathState ps;
     ps.rng = rng;
     ps.beta = paths[CLP_WF_ROW_BETA * capacity + slot].xyz;
     ps.depth = as_uint(paths[CLP_WF_ROW_L * capacity + slot].w) & 0x7fffffffu;
-    path_follow(&ps, &s, &bs);
-    paths[CLP_WF_ROW_O * capacity + slot] = (float4)(ps.ray.o, ps.prev_pdf);
+    path_turn(&ps, &bs);
     paths[CLP_WF_ROW_D * capacity + slot] = (float4)(ps.ray.d, as_float(ps.rng.state));
     ((global uint*)&paths[CLP_WF_ROW_L * capacity + slot])[3] = ps.depth | (ps.prev_delta ? 0x80000000u : 0u);
     paths[CLP_WF_ROW_BETA * capacity + slot] = (float4)(ps.beta, 0.0f);
-    /* ps.prev_p is the vertex wf_shade stored already. */
+    /* The new ray's origin (path_follow's), from the hit point and its error
+     * bound recomputed after the stores above rather than kept through the
+     * BSDF sampling: kept, they took 65-67 registers at sm_90 in programs with
+     * GGX conductors or glass, recomputed 58-60. The stores may alias the
+     * triangles as far as the compiler knows, so it cannot merge the two
+     * reads back into one and keep the values after all. The same
+     * arithmetic on the same values: the same bits. ps.prev_p is the vertex
+     * wf_shade stored already. */
+    wf_load_hit(&h, hits, slot);
+    float3 err, ng;
+    const float3 p = surface_point(&sc, &h, &ng, &err);
+    paths[CLP_WF_ROW_O * capacity + slot] = (float4)(offset_ray_origin(p, err, ng, bs.wi), ps.prev_pdf);
     next_queue[atomic_inc(&counts[CLP_WF_NEXT])] = slot;
 }
 

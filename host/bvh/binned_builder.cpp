@@ -9,6 +9,7 @@
 #include <system_error>
 #include <thread>
 
+#include "bvh/binning.hpp"
 #include "bvh/build_simd.hpp"
 #include "util/error.hpp"
 
@@ -33,59 +34,12 @@ void fork_join(int threads, const std::function<void(int)>& f) {
 
 namespace {
 
-constexpr int kMaxBins = 256;
 // Nodes over at least this many triangles are binned and partitioned by all
 // threads; smaller subtrees are built whole, one per thread. A size, not a
 // share of the threads, so the tree is the same for every thread count.
 constexpr std::uint32_t kBigNode = 1u << 14;
-
-// Per axis, the bins' boxes and counts. A node over at least as many
-// triangles as bins clears and fills them all (clear, then bin_refs); a
-// smaller node fills only the bins it occupies, each written whole by its
-// first triangle (bin_refs_sparse), and marks them in `occupied`, so nothing
-// needs clearing: its SAH sweep visits only those bins (the same choice as
-// visiting all: the costs between two occupied bins do not change, and the
-// sweep keeps the first of equal costs).
-struct Bins {
-    Box4 box[3][kMaxBins];
-    std::uint32_t count[3][kMaxBins];
-    std::uint64_t occupied[3][kMaxBins / 64];
-
-    void clear(int bins) {
-        for (int a = 0; a < 3; ++a)
-            for (int k = 0; k < bins; ++k) {
-                box[a][k] = Box4{};
-                count[a][k] = 0;
-            }
-    }
-    void merge(const Bins& o, int bins) {
-        for (int a = 0; a < 3; ++a)
-            for (int k = 0; k < bins; ++k) {
-                box[a][k].grow(o.box[a][k]);
-                count[a][k] += o.count[a][k];
-            }
-    }
-};
-
-// The bins an SAH sweep visits on one axis, in order.
-struct BinList {
-    std::uint8_t bin[kMaxBins];
-    int size = 0;
-};
-
-// All bins, 0 .. bins - 1.
-void list_all(int bins, BinList& l) {
-    for (int k = 0; k < bins; ++k) l.bin[k] = std::uint8_t(k);
-    l.size = bins;
-}
-
-// The occupied bins, in increasing order, from the bit masks.
-void list_occupied(const std::uint64_t* words, int bins, BinList& l) {
-    l.size = 0;
-    for (int w = 0; w * 64 < bins; ++w)
-        for (std::uint64_t m = words[w]; m; m &= m - 1)
-            l.bin[l.size++] = std::uint8_t(w * 64 + __builtin_ctzll(m));
-}
+// The records a thread bins or scatters at a time in those nodes.
+constexpr std::uint32_t kChunk = 1u << 13;
 
 // A subtree still to build: records [begin, end), in the scatter array when in_tmp.
 struct Range {
@@ -100,78 +54,6 @@ struct Decision {
     enum Kind { Leaf, Sah, Median } kind = Leaf;
     int axis = 0, bin = 0;
 };
-
-inline F4 centroid(F4 lo, F4 hi) {
-    const F4 half = splat(0.5f);
-    return lo * half + hi * half;  // not (lo + hi) / 2: no overflow near the float range's ends
-}
-
-// The mapping from a centroid to its bin on each axis (Wald 2007: equal slabs
-// of the node's centroid bounds). Binning and partitioning both use it, so a
-// partition puts exactly the binned counts on each side.
-struct BinMap {
-    F4 lo, scale, top;
-    BinMap(const Box4& cbox, int bins) {
-        // One division per lane, as b / max(extent, 1e-30) per axis; lane 3 unused.
-        const F4 e = max4(cbox.hi - cbox.lo, splat(1e-30f));
-        lo = cbox.lo;
-        alignas(16) float sc[4];
-        store4(sc, splat(float(bins)) / e);
-        sc[3] = 0.0f;
-        scale = load4(sc);
-        top = splat(float(bins - 1));
-    }
-    void operator()(F4 c, std::int32_t idx[4]) const { bin_index4((c - lo) * scale, top, idx); }
-};
-
-// Bins records [begin, end) into cleared bins.
-void bin_refs(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, Bins& bins) {
-    Box4* b0 = bins.box[0];
-    Box4* b1 = bins.box[1];
-    Box4* b2 = bins.box[2];
-    std::uint32_t* c0 = bins.count[0];
-    std::uint32_t* c1 = bins.count[1];
-    std::uint32_t* c2 = bins.count[2];
-    for (std::uint32_t i = begin; i < end; ++i) {
-        const F4 lo = load3(r[i].lo), hi = load3(r[i].hi);
-        int k0, k1, k2;
-        bin_index3((centroid(lo, hi) - map.lo) * map.scale, map.top, k0, k1, k2);
-        b0[k0].grow(lo, hi);
-        ++c0[k0];
-        b1[k1].grow(lo, hi);
-        ++c1[k1];
-        b2[k2].grow(lo, hi);
-        ++c2[k2];
-    }
-}
-
-// bin_refs for a node over fewer triangles than bins: the first triangle in a
-// bin writes it, the occupied bins are marked; nothing needs clearing before.
-void bin_refs_sparse(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, int bins, Bins& b) {
-    for (int a = 0; a < 3; ++a)
-        for (int w = 0; w * 64 < bins; ++w) b.occupied[a][w] = 0;
-    auto put = [&b](int a, int k, F4 lo, F4 hi) {
-        std::uint64_t& word = b.occupied[a][k >> 6];
-        const std::uint64_t bit = std::uint64_t(1) << (k & 63);
-        if (word & bit) {
-            b.box[a][k].grow(lo, hi);
-            ++b.count[a][k];
-        } else {
-            word |= bit;
-            b.box[a][k].lo = lo;
-            b.box[a][k].hi = hi;
-            b.count[a][k] = 1;
-        }
-    };
-    for (std::uint32_t i = begin; i < end; ++i) {
-        const F4 lo = load3(r[i].lo), hi = load3(r[i].hi);
-        int k0, k1, k2;
-        bin_index3((centroid(lo, hi) - map.lo) * map.scale, map.top, k0, k1, k2);
-        put(0, k0, lo, hi);
-        put(1, k1, lo, hi);
-        put(2, k2, lo, hi);
-    }
-}
 
 class Builder {
 public:
@@ -214,20 +96,21 @@ private:
 
     Ref* refs(const Range& r) const { return r.in_tmp ? tmp_ : main_; }
 
+    // Its records end in the main array (partitions alternate between the two).
     void leaf(const Range& r) {
+        if (r.in_tmp)
+            for (std::uint32_t i = r.begin; i < r.end; ++i) main_[i] = tmp_[i];
         TreeNode& n = nodes_[r.slot];
         store_box(n, r.box);
-        n.first = r.begin;
+        n.link = r.begin;
         n.count = r.end - r.begin;
-        n.right = 0;
     }
 
     void interior(const Range& r, std::uint32_t mid) {
         TreeNode& n = nodes_[r.slot];
         store_box(n, r.box);
-        n.first = 0;
         n.count = 0;
-        n.right = r.slot + 2 * (mid - r.begin);
+        n.link = r.slot + 2 * (mid - r.begin);
     }
 
     static void store_box(TreeNode& n, const Box4& b) {
@@ -263,26 +146,24 @@ private:
         F4 lo = splat(std::numeric_limits<float>::infinity()), hi = splat(-std::numeric_limits<float>::infinity());
         std::uint32_t cnt = 0;
         for (int j = m - 1; j > 0; --j) {  // right side areas, swept from the right
-            const int k = list.bin[j];
-            lo = min4(lo, box[k].lo);
-            hi = max4(hi, box[k].hi);
-            cnt += count[k];
+            lo = min4(lo, box[j].lo);
+            hi = max4(hi, box[j].hi);
+            cnt += count[j];
             right_cost[j] = cnt ? area_of_extent(hi - lo) * float(cnt) : 0.0f;
         }
         lo = splat(std::numeric_limits<float>::infinity());
         hi = splat(-std::numeric_limits<float>::infinity());
         cnt = 0;
         for (int j = 0; j < m - 1; ++j) {
-            const int k = list.bin[j];
-            lo = min4(lo, box[k].lo);
-            hi = max4(hi, box[k].hi);
-            cnt += count[k];
+            lo = min4(lo, box[j].lo);
+            hi = max4(hi, box[j].hi);
+            cnt += count[j];
             if (cnt == 0 || cnt == n) continue;
             const float c = area_of_extent(hi - lo) * float(cnt) + right_cost[j + 1];
             if (c < best_cost) {
                 best_cost = c;
                 best_axis = a;
-                best_bin = k;
+                best_bin = list.bin[j];
             }
         }
     }
@@ -322,8 +203,7 @@ private:
     static void child_boxes(const Bins& bins, const BinList& list, const Decision& d, Box4& left, Box4& right) {
         left = right = Box4{};
         for (int j = 0; j < list.size; ++j) {
-            const int k = list.bin[j];
-            (k <= d.bin ? left : right).grow(bins.box[d.axis][k]);
+            (list.bin[j] <= d.bin ? left : right).grow(bins.box[d.axis][j]);
         }
     }
 
@@ -359,46 +239,59 @@ private:
 
     // The nodes of one level large enough for all threads, together (one
     // fork-join per pass, not per node): parallel binning, then a stable
-    // partition scattered into the other array (the same result however the
-    // records are cut into chunks). Children this large form the next level,
-    // the others become tasks.
+    // partition scattered into the other array, both by fixed-size chunks
+    // (so the result does not depend on the threads). Children this large
+    // form the next level, the others become tasks.
     void big_level(const std::vector<Range>& level, std::vector<Range>& next, std::vector<Range>& tasks) {
         const int T = opt_.threads;
         const std::size_t L = level.size();
         top_interior += L;  // a large node is never a leaf
-        auto chunk = [&](std::size_t i, int t) {
-            const Range& r = level[i];
-            return r.begin + std::uint32_t(std::uint64_t(r.end - r.begin) * std::uint32_t(t) / std::uint32_t(T));
+        // Each node cut into chunks of a fixed size, whatever the thread count,
+        // handed out one at a time: a thread that starts late or is preempted
+        // (a busy machine) takes fewer, and the bins merge in chunk order.
+        struct Chunk {
+            std::uint32_t node, begin, end;
+        };
+        std::vector<Chunk> chunks;
+        std::vector<std::size_t> first_chunk(L + 1);
+        for (std::size_t i = 0; i < L; ++i) {
+            first_chunk[i] = chunks.size();
+            for (std::uint32_t b = level[i].begin; b < level[i].end; b += std::min(kChunk, level[i].end - b))
+                chunks.push_back({std::uint32_t(i), b, b + std::min(kChunk, level[i].end - b)});
+        }
+        first_chunk[L] = chunks.size();
+        const std::size_t C = chunks.size();
+        auto each_chunk = [&](const std::function<void(std::size_t)>& f) {
+            std::atomic<std::size_t> next_chunk{0};
+            fork_join(int(std::min<std::size_t>(std::size_t(T), C)), [&](int) {
+                for (std::size_t c; (c = next_chunk.fetch_add(1)) < C;) f(c);
+            });
         };
         std::vector<BinMap> maps;
         maps.reserve(L);
         for (const Range& r : level) maps.emplace_back(r.cbox, opt_.bins);
-        std::vector<Bins> part(L * std::size_t(T));
-        fork_join(T, [&](int t) {
-            for (std::size_t i = 0; i < L; ++i) {
-                Bins& b = part[i * std::size_t(T) + std::size_t(t)];
-                b.clear(opt_.bins);
-                bin_refs(refs(level[i]), chunk(i, t), chunk(i, t + 1), maps[i], b);
-            }
+        std::vector<Bins> part(C);
+        each_chunk([&](std::size_t c) {
+            const Chunk& ch = chunks[c];
+            bin_refs(refs(level[ch.node]), ch.begin, ch.end, maps[ch.node], part[c]);
         });
         struct Split {
             Decision d;
             Range left{}, right{};
-            std::vector<std::uint32_t> left_at, right_at;  // per chunk: where its records go
         };
         std::vector<Split> split(L);
+        std::vector<std::uint32_t> left_at(C), right_at(C);  // per chunk: where its records go
         auto total_bins = std::make_unique<Bins>();
         Bins& total = *total_bins;
         BinList lists[3];
         for (std::size_t i = 0; i < L; ++i) {
             const Range& r = level[i];
             Split& sp = split[i];
-            const Bins* p = &part[i * std::size_t(T)];
             sp.d = decide(
                 r,
                 [&](Bins& bins, BinList* lists) {
                     bins.clear(opt_.bins);
-                    for (int t = 0; t < T; ++t) bins.merge(p[t], opt_.bins);
+                    for (std::size_t c = first_chunk[i]; c < first_chunk[i + 1]; ++c) bins.merge(part[c], opt_.bins);
                     for (int a = 0; a < 3; ++a) list_all(opt_.bins, lists[a]);
                 },
                 total, lists);
@@ -406,42 +299,39 @@ private:
             // Each chunk's left count is known from its bins: scatter without a counting pass.
             child_boxes(total, lists[sp.d.axis], sp.d, sp.left.box, sp.right.box);
             std::uint32_t left_total = 0;
-            for (int t = 0; t < T; ++t)
-                for (int k = 0; k <= sp.d.bin; ++k) left_total += p[t].count[sp.d.axis][k];
-            sp.left_at.assign(std::size_t(T) + 1, r.begin);
-            sp.right_at.assign(std::size_t(T) + 1, r.begin + left_total);
-            for (int t = 0; t < T; ++t) {
+            for (int k = 0; k <= sp.d.bin; ++k) left_total += total.count[sp.d.axis][k];
+            std::uint32_t l_at = r.begin, r_at = r.begin + left_total;
+            for (std::size_t c = first_chunk[i]; c < first_chunk[i + 1]; ++c) {
                 std::uint32_t l = 0;
-                for (int k = 0; k <= sp.d.bin; ++k) l += p[t].count[sp.d.axis][k];
-                sp.left_at[t + 1] = sp.left_at[t] + l;
-                sp.right_at[t + 1] = sp.right_at[t] + (chunk(i, t + 1) - chunk(i, t) - l);
+                for (int k = 0; k <= sp.d.bin; ++k) l += part[c].count[sp.d.axis][k];
+                left_at[c] = l_at;
+                right_at[c] = r_at;
+                l_at += l;
+                r_at += chunks[c].end - chunks[c].begin - l;
             }
         }
-        std::vector<Box4> lc(L * std::size_t(T)), rc(L * std::size_t(T));
-        fork_join(T, [&](int t) {
-            for (std::size_t i = 0; i < L; ++i) {
-                const Split& sp = split[i];
-                if (sp.d.kind != Decision::Sah) continue;
-                const Range& r = level[i];
-                const Ref* src = refs(r);
-                Ref* dst = r.in_tmp ? main_ : tmp_;
-                std::uint32_t li = sp.left_at[t], ri = sp.right_at[t];
-                Box4 lcb, rcb;
-                for (std::uint32_t k = chunk(i, t); k < chunk(i, t + 1); ++k) {
-                    const F4 lo = load3(src[k].lo), hi = load3(src[k].hi), c = centroid(lo, hi);
-                    alignas(16) std::int32_t idx[4];
-                    maps[i](c, idx);
-                    if (idx[sp.d.axis] <= sp.d.bin) {
-                        dst[li++] = src[k];
-                        lcb.grow_point(c);
-                    } else {
-                        dst[ri++] = src[k];
-                        rcb.grow_point(c);
-                    }
+        std::vector<Box4> lc(C), rc(C);
+        each_chunk([&](std::size_t c) {
+            const Chunk& ch = chunks[c];
+            const Split& sp = split[ch.node];
+            if (sp.d.kind != Decision::Sah) return;
+            const Range& r = level[ch.node];
+            const Ref* src = refs(r);
+            Ref* dst = r.in_tmp ? main_ : tmp_;
+            std::uint32_t li = left_at[c], ri = right_at[c];
+            Box4 lcb, rcb;
+            for (std::uint32_t k = ch.begin; k < ch.end; ++k) {
+                const F4 lo = load3(src[k].lo), hi = load3(src[k].hi), cen = centroid(lo, hi);
+                if (maps[ch.node].left_of(cen, sp.d.axis, sp.d.bin)) {
+                    dst[li++] = src[k];
+                    lcb.grow_point(cen);
+                } else {
+                    dst[ri++] = src[k];
+                    rcb.grow_point(cen);
                 }
-                lc[i * std::size_t(T) + std::size_t(t)] = lcb;
-                rc[i * std::size_t(T) + std::size_t(t)] = rcb;
             }
+            lc[c] = lcb;
+            rc[c] = rcb;
         });
         for (std::size_t i = 0; i < L; ++i) {
             const Range& r = level[i];
@@ -449,11 +339,11 @@ private:
             std::uint32_t m;
             bool in_tmp = r.in_tmp;
             if (sp.d.kind == Decision::Sah) {
-                m = sp.right_at[0];
+                m = right_at[first_chunk[i]];
                 in_tmp = !r.in_tmp;
-                for (int t = 0; t < T; ++t) {
-                    sp.left.cbox.grow(lc[i * std::size_t(T) + std::size_t(t)]);
-                    sp.right.cbox.grow(rc[i * std::size_t(T) + std::size_t(t)]);
+                for (std::size_t c = first_chunk[i]; c < first_chunk[i + 1]; ++c) {
+                    sp.left.cbox.grow(lc[c]);
+                    sp.right.cbox.grow(rc[c]);
                 }
             } else {
                 m = median_split(r, sp.d.axis, sp.left, sp.right);  // a big node never becomes a leaf
@@ -464,7 +354,8 @@ private:
         }
     }
 
-    // A whole subtree on one thread: depth first, partitions in place. Returns its leaf count.
+    // A whole subtree on one thread: depth first, each SAH partition scattered
+    // into the other array (a median split stays in place). Returns its leaf count.
     std::size_t subtree(const Range& root, Bins& bins) {
         Range stack[2 * CLP_BVH_MAX_DEPTH + 4];
         BinList lists[3];
@@ -485,11 +376,11 @@ private:
             const Decision d = decide(
                 r,
                 [&](Bins& b, BinList* l) {
-                    if (n < dense_from) {
-                        bin_refs_sparse(a, r.begin, r.end, map, opt_.bins, b);
-                        for (int ax = 0; ax < 3; ++ax) list_occupied(b.occupied[ax], opt_.bins, l[ax]);
+                    if (n == 2) {
+                        bin_refs_pair(a, r.begin, map, b, l);
+                    } else if (n < dense_from) {
+                        bin_refs_sparse(a, r.begin, r.end, map, b, l);
                     } else {
-                        b.clear(opt_.bins);
                         bin_refs(a, r.begin, r.end, map, b);
                         for (int ax = 0; ax < 3; ++ax) list_all(opt_.bins, l[ax]);
                     }
@@ -502,35 +393,21 @@ private:
             }
             Range left{}, right{};
             std::uint32_t m = r.begin;
+            bool in_tmp = r.in_tmp;
             if (d.kind == Decision::Sah) {
-                std::uint32_t i = r.begin, j = r.end;
-                Box4 lcb, rcb;
-                while (i < j) {
-                    const F4 lo = load3(a[i].lo), hi = load3(a[i].hi), c = centroid(lo, hi);
-                    alignas(16) std::int32_t idx[4];
-                    map(c, idx);
-                    if (idx[d.axis] <= d.bin) {
-                        lcb.grow_point(c);
-                        ++i;
-                    } else {
-                        rcb.grow_point(c);
-                        std::swap(a[i], a[--j]);
-                    }
-                }
-                m = i;
-                left.cbox = lcb;
-                right.cbox = rcb;
+                // Into the other array: the children live there from now on.
+                m = partition_refs(a, r.in_tmp ? main_ : tmp_, r.begin, r.end, map, d.axis, d.bin, left.cbox, right.cbox);
+                in_tmp = !r.in_tmp;
                 child_boxes(bins, lists[d.axis], d, left.box, right.box);
             } else {
                 m = median_split(r, d.axis, left, right);
             }
-            set_children(r, m, r.in_tmp, left, right);
+            set_children(r, m, in_tmp, left, right);
             interior(r, m);
             stack[sp++] = right;
             stack[sp++] = left;
         }
         leaves += leaf_count;
-        if (root.in_tmp) std::memcpy(main_ + root.begin, tmp_ + root.begin, (root.end - root.begin) * sizeof(Ref));
         return leaf_count;
     }
 };
@@ -541,42 +418,47 @@ Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& o
     const std::size_t n = vertices.size() / 3;
     Tree tree;
     tree.ref_count = n;
-    tree.refs.reset(new Ref[n]);  // left uninitialised: the threads below touch it first
-    tree.nodes.reset(new TreeNode[2 * n]);
-    std::unique_ptr<Ref[]> tmp(n >= kBigNode ? new Ref[n] : nullptr);
+    tree.refs = big_array<Ref>(n);  // left uninitialised: the threads below touch it first
+    tree.nodes = big_array<TreeNode>(2 * n);
+    const BigArray<Ref> tmp = big_array<Ref>(n);
 
-    // Records, root bounds, and the first non-finite triangle, per chunk.
+    // Records, root bounds, and the first non-finite triangle, per chunk of
+    // kChunk triangles, handed out one at a time (as the top levels' chunks).
     const int T = opt.threads;
-    std::vector<Box4> box(static_cast<std::size_t>(T)), cbox(static_cast<std::size_t>(T));
-    std::vector<std::size_t> bad(std::size_t(T), n);
+    const std::size_t C = (n + kChunk - 1) / kChunk;
+    std::vector<Box4> box(C), cbox(C);
+    std::vector<std::size_t> bad(C, n);
     Ref* refs = tree.refs.get();
-    fork_join(T, [&](int t) {
-        Box4 b, c;
-        for (std::size_t i = n * std::size_t(t) / std::size_t(T); i < n * std::size_t(t + 1) / std::size_t(T); ++i) {
-            const glm::vec3 &p = vertices[3 * i], &q = vertices[3 * i + 1], &s = vertices[3 * i + 2];
-            Ref& r = refs[i];
-            bool finite = true;
-            for (int a = 0; a < 3; ++a) {
-                r.lo[a] = std::min({p[a], q[a], s[a]});
-                r.hi[a] = std::max({p[a], q[a], s[a]});
-                finite = finite && std::isfinite(p[a]) && std::isfinite(q[a]) && std::isfinite(s[a]);
+    std::atomic<std::size_t> next_chunk{0};
+    fork_join(int(std::min<std::size_t>(std::size_t(T), C)), [&](int) {
+        for (std::size_t k; (k = next_chunk.fetch_add(1)) < C;) {
+            Box4 b, c;
+            for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
+                const glm::vec3 &p = vertices[3 * i], &q = vertices[3 * i + 1], &s = vertices[3 * i + 2];
+                Ref& r = refs[i];
+                bool finite = true;
+                for (int a = 0; a < 3; ++a) {
+                    r.lo[a] = std::min({p[a], q[a], s[a]});
+                    r.hi[a] = std::max({p[a], q[a], s[a]});
+                    finite = finite && std::isfinite(p[a]) && std::isfinite(q[a]) && std::isfinite(s[a]);
+                }
+                if (!finite && bad[k] == n) bad[k] = i;
+                r.prim = std::uint32_t(i);
+                r.pad = 0;
+                const F4 lo = load3(r.lo), hi = load3(r.hi);
+                b.grow(lo, hi);
+                c.grow_point(centroid(lo, hi));
             }
-            if (!finite && bad[t] == n) bad[t] = i;
-            r.prim = std::uint32_t(i);
-            r.pad = 0;
-            const F4 lo = load3(r.lo), hi = load3(r.hi);
-            b.grow(lo, hi);
-            c.grow_point(centroid(lo, hi));
+            box[k] = b;
+            cbox[k] = c;
         }
-        box[t] = b;
-        cbox[t] = c;
     });
     for (std::size_t i : bad)  // chunks in order: the first one found is the lowest index
         if (i < n) throw Error("BVH build: triangle " + std::to_string(i) + " has a non-finite vertex coordinate");
     Range root{};
-    for (int t = 0; t < T; ++t) {
-        root.box.grow(box[t]);
-        root.cbox.grow(cbox[t]);
+    for (std::size_t k = 0; k < C; ++k) {
+        root.box.grow(box[k]);
+        root.cbox.grow(cbox[k]);
     }
     root.begin = 0;
     root.end = std::uint32_t(n);

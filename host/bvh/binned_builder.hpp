@@ -2,8 +2,9 @@
 // The binned-SAH builder behind build_bvh (bvh.hpp): a binary tree over
 // triangle references, before flattening into the device layout.
 //
-// Memory: one 32-byte record per triangle (its box and index), reordered in
-// place as nodes split, plus a second array the top levels scatter into; the
+// Memory: one 32-byte record per triangle (its box and index), and a second
+// array of them: a split scatters its node's records from one to the other
+// (a median split reorders them in place); a leaf's end in the first. The
 // tree's nodes live in one array allocated up front. A subtree over n
 // triangles whose root is slot s owns slots [s, s + 2n - 1) (a binary tree
 // with at least one triangle per leaf has at most 2n - 1 nodes): its left
@@ -17,6 +18,7 @@
 
 #include <glm/glm.hpp>
 
+#include "bvh/big_arrays.hpp"
 #include "bvh/bvh.hpp"
 
 namespace clpath::bvh_build {
@@ -28,12 +30,13 @@ struct alignas(16) Ref {
     float pad;
 };
 
+// 32 bytes: two to a cache line.
 struct TreeNode {
     float lo[3], hi[3];
-    std::uint32_t first;  // leaf: its first record
+    std::uint32_t link;   // leaf: its first record; interior: the right child's slot (the left's is the next)
     std::uint32_t count;  // leaf: records; 0 for an interior node
-    std::uint32_t right;  // interior: the right child's slot (the left child is the next slot)
 };
+static_assert(sizeof(TreeNode) == 32);
 
 // A subtree one thread built whole (the tree above them: the large nodes).
 struct Subtree {
@@ -43,8 +46,8 @@ struct Subtree {
 };
 
 struct Tree {
-    std::unique_ptr<TreeNode[]> nodes;  // slot 0 is the root; unused slots are left unwritten
-    std::unique_ptr<Ref[]> refs;        // in leaf order
+    BigArray<TreeNode> nodes;  // slot 0 is the root; unused slots are left unwritten
+    BigArray<Ref> refs;        // in leaf order
     std::size_t ref_count = 0;
     std::size_t leaf_count = 0;
     std::vector<Subtree> subtrees;  // left to right (by first record)

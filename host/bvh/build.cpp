@@ -28,7 +28,7 @@ void set_slot(BvhNode64& node, int slot, const TreeNode& c, int child_index) {
         lo[a] = c.lo[a];
         hi[a] = c.hi[a];
     }
-    const int child = c.count ? ~int(c.first) : child_index;
+    const int child = c.count ? ~int(c.link) : child_index;
     (slot == 0 ? node.child0 : node.child1) = child;
     (slot == 0 ? node.count0 : node.count1) = c.count;
 }
@@ -59,7 +59,7 @@ int flatten_from(const TreeNode* tree, std::uint32_t root, int depth, int first,
         const TreeNode& b = tree[it.slot];
         st.cost += traversal_cost * node_area(b) / root_area;
         st.max_depth = std::max(st.max_depth, it.depth);
-        const std::uint32_t kids[2] = {it.slot + 1, b.right};
+        const std::uint32_t kids[2] = {it.slot + 1, b.link};
         for (int s = 0; s < 2; ++s) {
             const TreeNode& c = tree[kids[s]];
             int index = 0;
@@ -111,6 +111,8 @@ void flatten(const bvh_build::Tree& t, Bvh& bvh, float traversal_cost, int threa
         starts.push_back({s.slot, int(total), i});
         total += s.leaves - 1;
     }
+    bvh.nodes.reserve(total);
+    bvh_build::advise_huge_pages(bvh.nodes.data(), total * sizeof(BvhNode64));
     bvh.nodes.resize(total);
     BvhNode64* out = bvh.nodes.data();
     std::vector<FlatStats> part(starts.size());
@@ -167,22 +169,28 @@ Bvh build_bvh(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& opt
     const bvh_build::Tree tree = bvh_build::build_tree(vertices, opt);
     Bvh bvh;
     flatten(tree, bvh, opt.traversal_cost, opt.threads);
+    bvh.triangles.reserve(n);
+    bvh_build::advise_huge_pages(bvh.triangles.data(), n * sizeof(TriVerts));
     bvh.triangles.resize(n);
     const bvh_build::Ref* refs = tree.refs.get();
-    bvh_build::fork_join(opt.threads, [&](int t) {
-        const std::size_t T = std::size_t(opt.threads);
-        for (std::size_t i = n * std::size_t(t) / T; i < n * std::size_t(t + 1) / T; ++i) {
-            TriVerts& tv = bvh.triangles[i];
-            const std::size_t s = refs[i].prim;
-            for (int a = 0; a < 3; ++a) {
-                tv.v0[a] = vertices[3 * s][a];
-                tv.v1[a] = vertices[3 * s + 1][a];
-                tv.v2[a] = vertices[3 * s + 2][a];
+    // By chunks handed out one at a time, so a thread that starts late holds nobody up.
+    constexpr std::size_t kChunk = 1 << 14;
+    const std::size_t chunks = (n + kChunk - 1) / kChunk;
+    std::atomic<std::size_t> next_chunk{0};
+    bvh_build::fork_join(int(std::min<std::size_t>(std::size_t(opt.threads), chunks)), [&](int) {
+        for (std::size_t k; (k = next_chunk.fetch_add(1)) < chunks;)
+            for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
+                TriVerts& tv = bvh.triangles[i];
+                const std::size_t s = refs[i].prim;
+                for (int a = 0; a < 3; ++a) {
+                    tv.v0[a] = vertices[3 * s][a];
+                    tv.v1[a] = vertices[3 * s + 1][a];
+                    tv.v2[a] = vertices[3 * s + 2][a];
+                }
+                tv.prim = std::uint32_t(s);
+                tv.light = CLP_NO_LIGHT;  // the renderer marks emitters
+                tv.pad2 = 0;
             }
-            tv.prim = std::uint32_t(s);
-            tv.light = CLP_NO_LIGHT;  // the renderer marks emitters
-            tv.pad2 = 0;
-        }
     });
     bvh.stats.node_count = bvh.nodes.size();
     bvh.stats.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

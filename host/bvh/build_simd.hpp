@@ -55,6 +55,12 @@ inline float lane(F4 a, int i) {
     _mm_store_ps(e, a.v);
     return e[i];
 }
+// Bit i set where lane i of a >= lane i of b (false for NaN).
+inline int ge_mask(F4 a, F4 b) { return _mm_movemask_ps(_mm_cmpge_ps(a.v, b.v)); }
+// All lanes' bits set (when) or clear, to select with.
+inline F4 lane_mask(bool when) { return {_mm_castsi128_ps(_mm_set1_epi32(-int(when)))}; }
+// mask ? a : b, lane by lane (mask lanes all ones or all zeros).
+inline F4 select4(F4 mask, F4 a, F4 b) { return {_mm_or_ps(_mm_and_ps(mask.v, a.v), _mm_andnot_ps(mask.v, b.v))}; }
 #else
 struct F4 {
     float v[4];
@@ -96,6 +102,20 @@ inline void bin_index3(F4 x, F4 top, int& k0, int& k1, int& k2) {
 }
 inline float area_of_extent(F4 e) { return 2.0f * (e.v[0] * e.v[1] + e.v[1] * e.v[2] + e.v[2] * e.v[0]); }
 inline float lane(F4 a, int i) { return a.v[i]; }
+inline int ge_mask(F4 a, F4 b) {
+    int m = 0;
+    for (int i = 0; i < 4; ++i) m |= int(a.v[i] >= b.v[i]) << i;
+    return m;
+}
+inline F4 lane_mask(bool when) {
+    const float f = when ? 1.0f : 0.0f;  // a flag per lane: select4 below reads it as a truth value
+    return {{f, f, f, f}};
+}
+inline F4 select4(F4 mask, F4 a, F4 b) {
+    F4 r;
+    for (int i = 0; i < 4; ++i) r.v[i] = mask.v[i] != 0.0f ? a.v[i] : b.v[i];
+    return r;
+}
 #endif
 
 // An axis-aligned box; lane 3 is ignored.

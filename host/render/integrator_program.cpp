@@ -148,6 +148,9 @@ FrameParams IntegratorProgram::frame_params(const DeviceScene& scene, const Film
     fp.env_rot_sin = std::sin(sc.environment_rotation);
     fp.scene_flags = (sc.features.normals ? CLP_SCENE_NORMALS : 0u) | sc.surface_flags;
     fp.attr_stride = sc.attr_stride;
+    if (features_.alpha && (fp.scene_flags & CLP_SCENE_ATTRIBUTES) != features_.alpha_attributes)
+        throw Error("internal: the program's alpha test reads attributes " + std::to_string(features_.alpha_attributes) +
+                    ", the scene has " + std::to_string(fp.scene_flags & CLP_SCENE_ATTRIBUTES));
     fp.adaptive = adaptive_ ? 1u : 0u;
     return fp;
 }

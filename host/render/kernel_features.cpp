@@ -33,6 +33,8 @@ SceneFeatures scene_features(const Scene& scene) {
     f.normals = !scene.normals.empty();
     for (const auto& mesh : scene.meshes) f.normals = f.normals || !mesh.normals.empty();
     f.instances = !scene.instances.empty();
+    f.attributes = (scene.uvs.empty() ? 0u : CLP_SCENE_UVS) | (scene.tangents.empty() ? 0u : CLP_SCENE_TANGENTS) |
+                   (scene.colors.empty() ? 0u : CLP_SCENE_COLORS);
     return f;
 }
 
@@ -51,6 +53,7 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
         f.textures = f.vertex_colors = true;
         // Alpha changes traversal's signature (textures.cl): it follows the scene, even here.
         f.alpha = scene.alpha;
+        f.alpha_attributes = scene.alpha ? scene.attributes : 0u;
         f.clearcoat = scene.clearcoat;
         f.transmission = scene.transmission;
         f.instances = scene.instances;  // the node buffer's layout: it follows the scene
@@ -68,6 +71,7 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
     f.textures = scene.textures;
     f.vertex_colors = scene.vertex_colors;
     f.alpha = scene.alpha;
+    f.alpha_attributes = scene.alpha ? scene.attributes : 0u;
     f.instances = scene.instances;
     f.clearcoat = scene.clearcoat && scene.materials[CLP_MAT_GLTF];
     f.transmission = scene.transmission && scene.materials[CLP_MAT_GLTF];
@@ -87,7 +91,7 @@ std::string build_options(const KernelFeatures& f) {
     if (f.normals) o += " -DCLP_HAS_NORMALS";
     if (f.textures) o += " -DCLP_HAS_TEXTURES";
     if (f.vertex_colors) o += " -DCLP_HAS_VERTEX_COLORS";
-    if (f.alpha) o += " -DCLP_HAS_ALPHA";
+    if (f.alpha) o += " -DCLP_HAS_ALPHA -DCLP_ALPHA_ATTRIBUTES=" + std::to_string(f.alpha_attributes) + "u";
     if (f.clearcoat) o += " -DCLP_HAS_CLEARCOAT";
     if (f.transmission) o += " -DCLP_HAS_TRANSMISSION";
     if (f.flat_accel) o += " -DCLP_ACCEL_FLAT";

@@ -25,6 +25,10 @@ struct KernelFeatures {
     bool textures = false;       // some material maps a texture (CLP_HAS_TEXTURES)
     bool vertex_colors = false;  // per-vertex colours multiply base colours (CLP_HAS_VERTEX_COLORS)
     bool alpha = false;          // MASK or BLEND coverage is tested in traversal (CLP_HAS_ALPHA)
+    // With alpha: the scene's attribute layout (CLP_SCENE_UVS, _TANGENTS,
+    // _COLORS), which the coverage test in traversal reads as a constant
+    // (CLP_ALPHA_ATTRIBUTES, kernels/scene_data.cl).
+    std::uint32_t alpha_attributes = 0;
     bool clearcoat = false;      // a glTF material has a clear coat (CLP_HAS_CLEARCOAT)
     bool transmission = false;   // a glTF material transmits (CLP_HAS_TRANSMISSION)
     bool instances = false;      // meshes placed by instances: the two-level walk (CLP_HAS_INSTANCES)
@@ -41,6 +45,7 @@ struct SceneFeatures {
     bool textures = false, vertex_colors = false, alpha = false;
     bool clearcoat = false, transmission = false;  // glTF layers (KHR_materials_clearcoat, _transmission)
     bool instances = false;  // some mesh is placed by instances (Scene::instances)
+    std::uint32_t attributes = 0;  // CLP_SCENE_UVS, _TANGENTS, _COLORS: the per-triangle attributes it has
 };
 SceneFeatures scene_features(const Scene& scene);
 

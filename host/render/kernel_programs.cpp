@@ -40,7 +40,11 @@ const std::vector<SceneSwitch>& scene_switches() {
         v.push_back({"normals", [](SceneFeatures& f) { f.normals = true; }});
         v.push_back({"textures", [](SceneFeatures& f) { f.textures = true; }});
         v.push_back({"vertex-colors", [](SceneFeatures& f) { f.vertex_colors = true; }});
-        v.push_back({"alpha", [](SceneFeatures& f) { f.alpha = true; }});
+        // With every attribute the coverage test may read.
+        v.push_back({"alpha", [](SceneFeatures& f) {
+                         f.alpha = true;
+                         f.attributes = CLP_SCENE_ATTRIBUTES;
+                     }});
         // The glTF layers exist only on glTF materials.
         v.push_back({"clearcoat", [](SceneFeatures& f) { f.materials[CLP_MAT_GLTF] = f.clearcoat = true; }});
         v.push_back({"transmission", [](SceneFeatures& f) { f.materials[CLP_MAT_GLTF] = f.transmission = true; }});

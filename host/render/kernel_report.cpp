@@ -107,14 +107,9 @@ const std::vector<KernelBudget>& kernel_budgets() {
         {"batch_trace_any", "sm_90", 64, 256, nullptr, nullptr},
         // The wavefront's kernels are held to the traversal kernels' budget,
         // but for the shading kernels of glTF materials (textures, two GGX
-        // lobes), which may take half as many registers again. Not met yet,
-        // held at the figures of the 63-program gate (sm_90, ptxas 13.0):
-        // the walks of alpha-masked scenes (the alpha test inside the leaf
-        // test; the flat object list's walk takes 68), and the BSDF sampling
-        // of GGX dielectrics and conductors in programs without glTF
-        // materials (65-67).
+        // lobes), which may take half as many registers again.
         {"wf_camera", "sm_90", 64, 256, nullptr, nullptr},
-        {"wf_trace", "sm_90", 64, 256, nullptr, "-DCLP_HAS_INSTANCES", 72, 0},
+        {"wf_trace", "sm_90", 64, 256, nullptr, "-DCLP_HAS_INSTANCES"},
         // The two-level walk of instanced scenes: one stack for both levels
         // (CLP_INSTANCE_STACK, 109 entries: 436 bytes) and the world ray kept
         // beside the object-space one. Not met; held at the figures of its
@@ -125,9 +120,9 @@ const std::vector<KernelBudget>& kernel_budgets() {
         {"wf_light", "sm_90", 64, 256, nullptr, nullptr},
         {"wf_connect", "sm_90", 64, 256, nullptr, "-DCLP_HAS_MAT_GLTF"},
         {"wf_connect", "sm_90", 96, 256, "-DCLP_HAS_MAT_GLTF", nullptr},
-        {"wf_scatter", "sm_90", 64, 256, nullptr, "-DCLP_HAS_MAT_GLTF", 67, 0},
+        {"wf_scatter", "sm_90", 64, 256, nullptr, "-DCLP_HAS_MAT_GLTF"},
         {"wf_scatter", "sm_90", 96, 256, "-DCLP_HAS_MAT_GLTF", nullptr},
-        {"wf_shadow", "sm_90", 64, 256, nullptr, "-DCLP_HAS_INSTANCES", 72, 0},
+        {"wf_shadow", "sm_90", 64, 256, nullptr, "-DCLP_HAS_INSTANCES"},
         {"wf_shadow", "sm_90", 64, 256, "-DCLP_HAS_INSTANCES", nullptr, 85, 440},
         {"wf_next_bounce", "sm_90", 64, 256, nullptr, nullptr},
         {"wf_accumulate", "sm_90", 64, 256, nullptr, nullptr},

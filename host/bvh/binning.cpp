@@ -1,0 +1,252 @@
+#include "bvh/binning.hpp"
+
+#include <limits>
+#include <stdexcept>
+
+// AVX is used where the CPU has it, whatever the compiler's target: the
+// function below is compiled for AVX alone and chosen at run time, so the
+// binary still runs on an x86-64 without it.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define CLPATH_BVH_HAVE_AVX_PATH 1
+#include <immintrin.h>
+#endif
+
+namespace clpath::bvh_build {
+
+constexpr std::uint32_t kTwoSetsFrom = 128;
+
+// From kTwoSetsFrom triangles on, alternate triangles go to two sets of bins,
+// merged at the end: a run of triangles in one bin (neighbours in a mesh
+// often are) would otherwise chain every update through the same memory.
+// bin_refs_avx splits them the same way and merges in the same order, so the
+// two agree bit for bit.
+void bin_refs_portable(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, Bins& bins) {
+    bins.clear(map.bins);
+    struct Raw {  // Box4 without its initialisers: only map.bins of them are set, below
+        F4 lo, hi;
+    };
+    Raw aux_box[3][kMaxBins];
+    std::uint32_t aux_count[3][kMaxBins];
+    for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < map.bins; ++k) {
+            aux_box[a][k].lo = Box4{}.lo;
+            aux_box[a][k].hi = Box4{}.hi;
+            aux_count[a][k] = 0;
+        }
+    auto put = [&map, r](std::uint32_t i, auto* b0, auto* b1, auto* b2, std::uint32_t* c0, std::uint32_t* c1,
+                         std::uint32_t* c2) {
+        const F4 lo = load3(r[i].lo), hi = load3(r[i].hi);
+        int k0, k1, k2;
+        bin_index3((centroid(lo, hi) - map.lo) * map.scale, map.top, k0, k1, k2);
+        b0[k0].lo = min4(b0[k0].lo, lo);
+        b0[k0].hi = max4(b0[k0].hi, hi);
+        ++c0[k0];
+        b1[k1].lo = min4(b1[k1].lo, lo);
+        b1[k1].hi = max4(b1[k1].hi, hi);
+        ++c1[k1];
+        b2[k2].lo = min4(b2[k2].lo, lo);
+        b2[k2].hi = max4(b2[k2].hi, hi);
+        ++c2[k2];
+    };
+    std::uint32_t i = begin;
+    if (end - begin >= kTwoSetsFrom)
+        for (; i + 1 < end; i += 2) {
+            put(i, bins.box[0], bins.box[1], bins.box[2], bins.count[0], bins.count[1], bins.count[2]);
+            put(i + 1, aux_box[0], aux_box[1], aux_box[2], aux_count[0], aux_count[1], aux_count[2]);
+        }
+    for (; i < end; ++i) put(i, bins.box[0], bins.box[1], bins.box[2], bins.count[0], bins.count[1], bins.count[2]);
+    for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < map.bins; ++k) {
+            bins.box[a][k].grow(aux_box[a][k].lo, aux_box[a][k].hi);
+            bins.count[a][k] += aux_count[a][k];
+        }
+}
+
+void bin_refs_sparse(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, Bins& b,
+                     BinList* lists) {
+    // First pass: each triangle's bins, and which bins are occupied. Second:
+    // each occupied bin's rank among them, then the boxes grown in triangle
+    // order (as binning into the bins themselves would), with no branch on
+    // whether a bin was seen before.
+    const std::uint32_t n = end - begin;
+    std::uint8_t bin_of[3][kMaxBins];  // n < bins <= kMaxBins
+    std::uint8_t rank[3][kMaxBins];
+    const int words = (map.bins + 63) / 64;
+    for (int a = 0; a < 3; ++a)
+        for (int w = 0; w < words; ++w) b.occupied[a][w] = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const F4 lo = load3(r[begin + i].lo), hi = load3(r[begin + i].hi);
+        int k[3];
+        bin_index3((centroid(lo, hi) - map.lo) * map.scale, map.top, k[0], k[1], k[2]);
+        for (int a = 0; a < 3; ++a) {
+            bin_of[a][i] = std::uint8_t(k[a]);
+            b.occupied[a][k[a] >> 6] |= std::uint64_t(1) << (k[a] & 63);
+        }
+    }
+    for (int a = 0; a < 3; ++a) {
+        BinList& l = lists[a];
+        l.size = 0;
+        for (int w = 0; w < words; ++w)
+            for (std::uint64_t m = b.occupied[a][w]; m; m &= m - 1) {
+                const int k = w * 64 + __builtin_ctzll(m);
+                rank[a][k] = std::uint8_t(l.size);
+                l.bin[l.size] = std::uint8_t(k);
+                b.box[a][l.size] = Box4{};
+                b.count[a][l.size] = 0;
+                ++l.size;
+            }
+    }
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const F4 lo = load3(r[begin + i].lo), hi = load3(r[begin + i].hi);
+        for (int a = 0; a < 3; ++a) {
+            const int j = rank[a][bin_of[a][i]];
+            b.box[a][j].grow(lo, hi);
+            ++b.count[a][j];
+        }
+    }
+}
+
+void bin_refs_pair(const Ref* r, std::uint32_t begin, const BinMap& map, Bins& b, BinList* lists) {
+    const F4 lo0 = load3(r[begin].lo), hi0 = load3(r[begin].hi), lo1 = load3(r[begin + 1].lo),
+             hi1 = load3(r[begin + 1].hi);
+    int k0[3], k1[3];
+    bin_index3((centroid(lo0, hi0) - map.lo) * map.scale, map.top, k0[0], k0[1], k0[2]);
+    bin_index3((centroid(lo1, hi1) - map.lo) * map.scale, map.top, k1[0], k1[1], k1[2]);
+    for (int a = 0; a < 3; ++a) {
+        BinList& l = lists[a];
+        Box4* box = b.box[a];
+        std::uint32_t* count = b.count[a];
+        if (k0[a] == k1[a]) {  // one bin, grown in record order as bin_refs_sparse grows it
+            l.size = 1;
+            l.bin[0] = std::uint8_t(k0[a]);
+            box[0] = Box4{};
+            box[0].grow(lo0, hi0);
+            box[0].grow(lo1, hi1);
+            count[0] = 2;
+            continue;
+        }
+        const bool swap = k1[a] < k0[a];
+        l.size = 2;
+        l.bin[0] = std::uint8_t(swap ? k1[a] : k0[a]);
+        l.bin[1] = std::uint8_t(swap ? k0[a] : k1[a]);
+        box[swap ? 1 : 0] = Box4{};
+        box[swap ? 1 : 0].grow(lo0, hi0);
+        box[swap ? 0 : 1] = Box4{};
+        box[swap ? 0 : 1].grow(lo1, hi1);
+        count[0] = count[1] = 1;
+    }
+}
+
+#if CLPATH_BVH_HAVE_AVX_PATH
+bool avx_available() {
+    static const bool yes = __builtin_cpu_supports("avx");
+    return yes;
+}
+
+// Each bin's box as one 256-bit value, its low half lo negated and its high
+// half hi, so one max grows both (-min(a, b) = max(-a, -b)), as tinybvh's
+// BuildAVX keeps its bins (Bikker, tinybvh 1.6). A Box4 is lo then hi, 32
+// bytes, so the bins are negated in place on the way in and out. maxps keeps
+// its second operand on ties, as minps does, so the bins equal
+// bin_refs_portable's bit for bit (signed zeros too). The centroid and bin
+// index are the same SSE operations as BinMap's, so the partition agrees.
+__attribute__((target("avx"))) void bin_refs_avx(const Ref* r, std::uint32_t begin, std::uint32_t end,
+                                                   const BinMap& map, Bins& bins) {
+    const __m256 keep6 = _mm256_castsi256_ps(_mm256_setr_epi32(-1, -1, -1, 0, -1, -1, -1, 0));
+    const __m256 flip_lo = _mm256_setr_ps(-0.0f, -0.0f, -0.0f, -0.0f, 0.0f, 0.0f, 0.0f, 0.0f);
+    float* box[3] = {reinterpret_cast<float*>(bins.box[0]), reinterpret_cast<float*>(bins.box[1]),
+                     reinterpret_cast<float*>(bins.box[2])};
+    static_assert(sizeof(Box4) == 32, "a bin's box is lo then hi, 8 floats");
+    std::uint32_t* c[3] = {bins.count[0], bins.count[1], bins.count[2]};
+    std::uint32_t *c0 = c[0], *c1 = c[1], *c2 = c[2];
+    alignas(16) float m[12];
+    store4(m, map.lo);
+    store4(m + 4, map.scale);
+    store4(m + 8, map.top);
+    const __m128 mlo = _mm_load_ps(m), mscale = _mm_load_ps(m + 4), mtop = _mm_load_ps(m + 8);
+    const __m128 half = _mm_set1_ps(0.5f);
+    alignas(32) float aux[3][8 * kMaxBins];
+    std::uint32_t aux_count[3][kMaxBins];
+    const __m256 empty = _mm256_set1_ps(-std::numeric_limits<float>::infinity());  // a negated empty box
+    for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < map.bins; ++k) {
+            _mm256_store_ps(aux[a] + 8 * k, empty);
+            _mm256_storeu_ps(box[a] + 8 * k, empty);
+            aux_count[a][k] = 0;
+            c[a][k] = 0;
+        }
+    auto put = [&](std::uint32_t i, float* b0, float* b1, float* b2, std::uint32_t* n0, std::uint32_t* n1,
+                   std::uint32_t* n2) __attribute__((target("avx"))) {
+        const __m256 f = _mm256_and_ps(_mm256_loadu_ps(r[i].lo), keep6);
+        const __m128 lo = _mm256_castps256_ps128(f), hi = _mm256_extractf128_ps(f, 1);
+        const __m128 c = _mm_add_ps(_mm_mul_ps(lo, half), _mm_mul_ps(hi, half));
+        const __m128 x = _mm_mul_ps(_mm_sub_ps(c, mlo), mscale);
+        const __m128i k = _mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(x, _mm_setzero_ps()), mtop));
+        const int k0 = _mm_cvtsi128_si32(k), k1 = _mm_extract_epi32(k, 1), k2 = _mm_extract_epi32(k, 2);
+        const __m256 g = _mm256_xor_ps(f, flip_lo);
+        float* p0 = b0 + 8 * k0;
+        float* p1 = b1 + 8 * k1;
+        float* p2 = b2 + 8 * k2;
+        _mm256_storeu_ps(p0, _mm256_max_ps(_mm256_loadu_ps(p0), g));
+        ++n0[k0];
+        _mm256_storeu_ps(p1, _mm256_max_ps(_mm256_loadu_ps(p1), g));
+        ++n1[k1];
+        _mm256_storeu_ps(p2, _mm256_max_ps(_mm256_loadu_ps(p2), g));
+        ++n2[k2];
+    };
+    std::uint32_t i = begin;
+    if (end - begin >= kTwoSetsFrom)
+        for (; i + 1 < end; i += 2) {
+            put(i, box[0], box[1], box[2], c0, c1, c2);
+            put(i + 1, aux[0], aux[1], aux[2], aux_count[0], aux_count[1], aux_count[2]);
+        }
+    for (; i < end; ++i) put(i, box[0], box[1], box[2], c0, c1, c2);
+    for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < map.bins; ++k) {
+            const __m256 merged = _mm256_max_ps(_mm256_loadu_ps(box[a] + 8 * k), _mm256_load_ps(aux[a] + 8 * k));
+            _mm256_storeu_ps(box[a] + 8 * k, _mm256_xor_ps(merged, flip_lo));
+            bins.count[a][k] += aux_count[a][k];
+        }
+}
+#else
+bool avx_available() { return false; }
+void bin_refs_avx(const Ref*, std::uint32_t, std::uint32_t, const BinMap&, Bins&) {
+    throw std::logic_error("bin_refs_avx: no AVX path in this build");
+}
+#endif
+
+void bin_refs(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap& map, Bins& bins) {
+    if (avx_available())
+        bin_refs_avx(r, begin, end, map, bins);
+    else
+        bin_refs_portable(r, begin, end, map, bins);
+}
+
+std::uint32_t partition_refs(const Ref* src, Ref* dst, std::uint32_t begin, std::uint32_t end, const BinMap& map,
+                             int axis, int bin, Box4& lcb, Box4& rcb) {
+    // Every record is written at both cursors and only one advances: the
+    // other slot is overwritten later (Hoare-style, without the swap).
+    std::uint32_t l = begin, r = end - 1;
+    const F4 t = splat(float(bin + 1)), inf = splat(std::numeric_limits<float>::infinity()), ninf = splat(-std::numeric_limits<float>::infinity());
+    F4 llo = inf, lhi = ninf, rlo = inf, rhi = ninf;
+    for (std::uint32_t i = begin; i < end; ++i) {
+        const F4 lo = load3(src[i].lo), hi = load3(src[i].hi), c = centroid(lo, hi);
+        const bool right = (ge_mask((c - map.lo) * map.scale, t) >> axis) & 1;
+        const F4 m = lane_mask(right);
+        dst[l] = src[i];
+        dst[r] = src[i];
+        l += !right;
+        r -= right;
+        llo = min4(llo, select4(m, inf, c));
+        lhi = max4(lhi, select4(m, ninf, c));
+        rlo = min4(rlo, select4(m, c, inf));
+        rhi = max4(rhi, select4(m, c, ninf));
+    }
+    lcb.lo = llo;
+    lcb.hi = lhi;
+    rcb.lo = rlo;
+    rcb.hi = rhi;
+    return l;
+}
+
+}  // namespace clpath::bvh_build
