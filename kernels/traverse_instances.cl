@@ -9,8 +9,8 @@
  * One walk serves the closest hit and any hit (any_hit is a constant at each
  * call site, so folded): children sorted nearest first for the closest hit,
  * leaves first for any hit; a leaf is pushed as ~(node * 4 + slot) and its
- * range read back when it pops (traverse_bvh4.cl's GPU walk), so the loop
- * has one leaf site and one instance-entry site. Included by traverse.cl. */
+ * range read back when it pops (traverse_bvh4.cl's GPU walk), so each level's
+ * loop has one leaf site. Included by traverse.cl. */
 #ifndef CLP_TRAVERSE_INSTANCES_CL
 #define CLP_TRAVERSE_INSTANCES_CL
 
@@ -28,12 +28,6 @@ static inline float3 xform_dir(float4 r0, float4 r1, float4 r2, float3 d) {
     return (float3)(dot(r0.xyz, d), dot(r1.xyz, d), dot(r2.xyz, d));
 }
 
-/* The ray of RayPre r in the object space of the instance whose record is
- * rows m (world_to_object in rows 3, 4, 5). */
-static inline RayPre instance_ray(global const float4* m, const RayPre* world) {
-    return ray_prepare(xform_point(m[3], m[4], m[5], world->org), xform_dir(m[3], m[4], m[5], world->dir));
-}
-
 /* Two lanes sorted, the leaf entries riding along in child (traverse_bvh4.cl's CLP_SORT2_DC). */
 #define CLP_SORT2_INST(i, j, sw)                                                \
     if (d.s##j < d.s##i) {                                              \
@@ -41,74 +35,119 @@ static inline RayPre instance_ray(global const float4* m, const RayPre* world) {
         child = child.sw;                                                       \
     }
 
+/* The pushes of one 4-wide node's children (entry distances d, child
+ * entries child, leaves already as ~(node * 4 + slot)) for the walk at
+ * either level: leaves last for any hit, farthest first for the closest hit,
+ * whose nearest child is walked next (entry, then NEXT) rather than pushed. */
+#define CLP_INSTANCE_PUSHES(NEXT)                                              \
+    if (any_hit) {                                                              \
+        int4 in = d < hit.t;                                                    \
+        if (in.s0 && child.s0 > 0) stack[sp++] = child.s0;                      \
+        if (in.s1 && child.s1 > 0) stack[sp++] = child.s1;                      \
+        if (in.s2 && child.s2 > 0) stack[sp++] = child.s2;                      \
+        if (in.s3 && child.s3 > 0) stack[sp++] = child.s3;                      \
+        if (in.s0 && child.s0 < 0) stack[sp++] = child.s0;                      \
+        if (in.s1 && child.s1 < 0) stack[sp++] = child.s1;                      \
+        if (in.s2 && child.s2 < 0) stack[sp++] = child.s2;                      \
+        if (in.s3 && child.s3 < 0) stack[sp++] = child.s3;                      \
+    } else {                                                                    \
+        CLP_SORT4(CLP_SORT2_INST)                                               \
+        if (d.s3 < hit.t) stack[sp++] = child.s3;                               \
+        if (d.s2 < hit.t) stack[sp++] = child.s2;                               \
+        if (d.s1 < hit.t) stack[sp++] = child.s1;                               \
+        if (d.s0 < hit.t) {                                                     \
+            entry = child.s0;                                                   \
+            NEXT;                                                               \
+        }                                                                       \
+    }
+
+/* The children of node entry, tested against ray r (box rb): d and child. */
+#define CLP_INSTANCE_NODE(rb, r)                                               \
+    global const float4* n = (global const float4*)&nodes[entry];               \
+    if (visits) ++*visits;                                                      \
+    float4 d = node_entry4(&rb, &r, r.inv_dir_finite, n, hit.t);                \
+    int4 child = as_int4(n[6]);                                                 \
+    d = select(d, (float4)(INFINITY), child == 0); /* empty slots */            \
+    child = select(child, ~(entry * 4 + (int4)(0, 1, 2, 3)), child < 0);
+
+/* Slots below the walk's stack entries: the world ray's origin and
+ * direction (bits), and the instance of the closest hit so far. They are
+ * read back from there (on leaving an instance, on a hit) rather than kept
+ * in registers through the bottom-level walk: kept, wf_shadow took 79
+ * registers at sm_90 and wf_trace 82, stored, 64 and 71 (for 32 bytes more
+ * of the stack the walk has anyway). */
+#define CLP_INST_WORLD 0
+#define CLP_INST_HIT 6
+#define CLP_INST_BASE 8
+
+/* The two levels are two loops, one inside the other: the top level on the
+ * world ray until a leaf (one instance) comes up, then the instance's mesh
+ * on the object-space ray until the stack is back at the depth it had on
+ * entry. The world ray's RayPre is made again from its origin and
+ * direction for each top-level stretch: *world is ray_prepare's (every
+ * caller's), so the same bits. */
 CLP_WALK CLP_WALK_RESULT instances_walk(CLP_WALK_OUT global const Bvh4Node128* nodes,
                                         global const TriVerts* tris, const RayPre* world, float tmax,
                                         int any_hit, uint* visits CLP_ALPHA_PARAM) {
     Hit hit;
     no_hit(&hit, tmax);
-    hit.inst = -1;
-    int stack[CLP_INSTANCE_STACK];
-    int sp = 0;
+    int stack[CLP_INST_BASE + CLP_INSTANCE_STACK];
+    stack[CLP_INST_WORLD + 0] = as_int(world->org.x);
+    stack[CLP_INST_WORLD + 1] = as_int(world->org.y);
+    stack[CLP_INST_WORLD + 2] = as_int(world->org.z);
+    stack[CLP_INST_WORLD + 3] = as_int(world->dir.x);
+    stack[CLP_INST_WORLD + 4] = as_int(world->dir.y);
+    stack[CLP_INST_WORLD + 5] = as_int(world->dir.z);
+    stack[CLP_INST_HIT] = -1;
+    int sp = CLP_INST_BASE;
     int entry = 0;
-    int inst = -1;    /* the instance being walked (its record's node index), -1 in the top level */
-    int inst_sp = 0;  /* the stack depth on entering it */
-    RayPre r = *world;
-    RayBox4 rb = ray_box4(&r);
     for (;;) {
-        if (entry >= 0) {
-            global const float4* n = (global const float4*)&nodes[entry];
-            if (visits) ++*visits;
-            float4 d = node_entry4(&rb, &r, r.inv_dir_finite, n, hit.t);
-            int4 child = as_int4(n[6]);
-            d = select(d, (float4)(INFINITY), child == 0); /* empty slots */
-            child = select(child, ~(entry * 4 + (int4)(0, 1, 2, 3)), child < 0);
-            if (any_hit) {
-                int4 in = d < hit.t;
-                if (in.s0 && child.s0 > 0) stack[sp++] = child.s0;
-                if (in.s1 && child.s1 > 0) stack[sp++] = child.s1;
-                if (in.s2 && child.s2 > 0) stack[sp++] = child.s2;
-                if (in.s3 && child.s3 > 0) stack[sp++] = child.s3;
-                if (in.s0 && child.s0 < 0) stack[sp++] = child.s0;
-                if (in.s1 && child.s1 < 0) stack[sp++] = child.s1;
-                if (in.s2 && child.s2 < 0) stack[sp++] = child.s2;
-                if (in.s3 && child.s3 < 0) stack[sp++] = child.s3;
+        const float3 wo = (float3)(as_float(stack[CLP_INST_WORLD + 0]), as_float(stack[CLP_INST_WORLD + 1]),
+                                   as_float(stack[CLP_INST_WORLD + 2]));
+        const float3 wd = (float3)(as_float(stack[CLP_INST_WORLD + 3]), as_float(stack[CLP_INST_WORLD + 4]),
+                                   as_float(stack[CLP_INST_WORLD + 5]));
+        {
+            const RayPre r = ray_prepare(wo, wd);
+            const RayBox4 rb = ray_box4(&r);
+            while (entry >= 0) {
+                CLP_INSTANCE_NODE(rb, r)
+                CLP_INSTANCE_PUSHES(continue)
+                if (sp == CLP_INST_BASE) {
+                    hit.inst = stack[CLP_INST_HIT];
+                    CLP_WALK_RETURN(hit);
+                }
+                entry = stack[--sp];
+            }
+        }
+        /* A top-level leaf: one instance. Its walk starts at its mesh's root. */
+        const int inst = ~nodes[(uint)~entry >> 2].child[(uint)~entry & 3u];
+        global const float4* m = (global const float4*)&nodes[inst];
+        const RayPre r = ray_prepare(xform_point(m[3], m[4], m[5], wo), xform_dir(m[3], m[4], m[5], wd));
+        const RayBox4 rb = ray_box4(&r);
+        const int base = sp;
+        entry = (int)((global const Instance*)m)->blas_root;
+        for (;;) {
+            if (entry >= 0) {
+                CLP_INSTANCE_NODE(rb, r)
+                CLP_INSTANCE_PUSHES(continue)
             } else {
-                CLP_SORT4(CLP_SORT2_INST)
-                if (d.s3 < hit.t) stack[sp++] = child.s3;
-                if (d.s2 < hit.t) stack[sp++] = child.s2;
-                if (d.s1 < hit.t) stack[sp++] = child.s1;
-                if (d.s0 < hit.t) {
-                    entry = child.s0;
-                    continue;
+                const uint ref = (uint)~entry;
+                global const Bvh4Node128* n = &nodes[ref >> 2];
+                if (leaf_hits(&r, tris, (uint)~n->child[ref & 3u], n->count[ref & 3u], &hit, any_hit CLP_ALPHA_ARG)) {
+                    stack[CLP_INST_HIT] = inst;
+                    if (any_hit) {
+                        hit.inst = inst;
+                        CLP_WALK_RETURN(hit);
+                    }
                 }
             }
-        } else {
-            const uint ref = (uint)~entry;
-            global const Bvh4Node128* n = &nodes[ref >> 2];
-            const int first = n->child[ref & 3u];
-            if (inst < 0) {
-                /* A top-level leaf: one instance. Its walk starts at its mesh's root. */
-                inst = ~first;
-                global const float4* m = (global const float4*)&nodes[inst];
-                r = instance_ray(m, world);
-                rb = ray_box4(&r);
-                inst_sp = sp;
-                entry = (int)((global const Instance*)m)->blas_root;
-                continue;
-            }
-            if (leaf_hits(&r, tris, (uint)~first, n->count[ref & 3u], &hit, any_hit CLP_ALPHA_ARG)) {
-                hit.inst = inst;
-                if (any_hit) break;
-            }
+            if (sp == base) break;
+            entry = stack[--sp];
         }
-        if (inst >= 0 && sp == inst_sp) { /* the instance is done: back to the top level */
-            inst = -1;
-            r = *world;
-            rb = ray_box4(&r);
-        }
-        if (sp == 0) break;
+        if (sp == CLP_INST_BASE) break;
         entry = stack[--sp];
     }
+    hit.inst = stack[CLP_INST_HIT];
     CLP_WALK_RETURN(hit);
 }
 
