@@ -309,9 +309,18 @@ static inline RayBox4 ray_box4(const RayPre* r) {
  * intersect_box4 are known in advance: the same distances, bit for bit, with
  * twelve compares and selects fewer. */
 static inline float4 intersect_box4_ordered(const RayBox4* b, global const float4* n, float tmax) {
-    return slab_entry4((n[b->near_x] - b->ox) * b->ix, (n[b->near_y] - b->oy) * b->iy,
-                       (n[b->near_z] - b->oz) * b->iz, (n[b->near_x ^ 1] - b->ox) * b->ix,
-                       (n[b->near_y ^ 1] - b->oy) * b->iy, (n[b->near_z ^ 1] - b->oz) * b->iz, tmax);
+#ifdef CLP_TARGET_GPU
+    /* The plane rows again from the signs of 1/dir at each node, as ray_prepare
+     * made them: three registers fewer through the walk for two compares
+     * each, and the instanced walk's wf_trace came within its 64 registers
+     * at sm_90 (67 with the rows kept). */
+    const int near_x = b->ix.s0 < 0.0f ? 1 : 0, near_y = b->iy.s0 < 0.0f ? 3 : 2, near_z = b->iz.s0 < 0.0f ? 5 : 4;
+#else
+    const int near_x = b->near_x, near_y = b->near_y, near_z = b->near_z;
+#endif
+    return slab_entry4((n[near_x] - b->ox) * b->ix, (n[near_y] - b->oy) * b->iy, (n[near_z] - b->oz) * b->iz,
+                       (n[near_x ^ 1] - b->ox) * b->ix, (n[near_y ^ 1] - b->oy) * b->iy,
+                       (n[near_z ^ 1] - b->oz) * b->iz, tmax);
 }
 
 /* Hit point from barycentrics, with a bound on its distance from the exact

@@ -222,11 +222,18 @@ typedef struct {
     uint mesh;
     uint pad0, pad1, pad2;
 } Instance;
-/* The top-level tree's binary depth bound, checked by the host: with the
- * bottom level's it sizes the instanced walk's one stack. */
-#define CLP_TLAS_MAX_DEPTH 32
-#define CLP_TLAS4_MAX_DEPTH (CLP_TLAS_MAX_DEPTH / 2)
-#define CLP_INSTANCE_STACK (3 * (CLP_BVH4_MAX_DEPTH + CLP_TLAS4_MAX_DEPTH) + 1)
+/* The instanced walk keeps one stack for both levels: the top level's
+ * pending siblings stay on it below the instance's walk, so it needs three
+ * entries per 4-wide level of the top level plus the deepest bottom level it
+ * enters, plus the one about to pop. That joint depth, not each level's, is
+ * bounded: the host refuses a scene whose top level's 4-wide depth and its
+ * deepest placed mesh's together pass CLP_INSTANCE_MAX_DEPTH4
+ * (host/bvh/instances.cpp, build_two_level). At 18 the stack is 55 entries,
+ * 220 bytes, and with the 8 slots below them (traverse_instances.cl) the
+ * walk's 252 bytes stay under the 256 a GPU traversal kernel is held to;
+ * 10,000 bunnies take 8 + 10. */
+#define CLP_INSTANCE_MAX_DEPTH4 18
+#define CLP_INSTANCE_STACK (3 * CLP_INSTANCE_MAX_DEPTH4 + 1)
 
 /* Triangle as traversal reads it, in BVH leaf order. prim is the index of the
  * triangle in the scene's original order (for material and shading data);

@@ -71,21 +71,31 @@ static inline float3 xform_dir(float4 r0, float4 r1, float4 r2, float3 d) {
     child = select(child, ~(entry * 4 + (int4)(0, 1, 2, 3)), child < 0);
 
 /* Slots below the walk's stack entries: the world ray's origin and
- * direction (bits), and the instance of the closest hit so far. They are
- * read back from there (on leaving an instance, on a hit) rather than kept
- * in registers through the bottom-level walk: kept, wf_shadow took 79
- * registers at sm_90 and wf_trace 82, stored, 64 and 71 (for 32 bytes more
- * of the stack the walk has anyway). */
+ * direction (bits), the instance of the closest hit so far, and the
+ * instance walked now. They are read back from there (on leaving an
+ * instance, on a hit) rather than kept in registers through the walk: kept,
+ * wf_shadow took 79 registers at sm_90 and wf_trace 82 (in the two nested
+ * loops of an earlier walk), stored, 64 and 71. */
 #define CLP_INST_WORLD 0
 #define CLP_INST_HIT 6
+#define CLP_INST_NOW 7
 #define CLP_INST_BASE 8
+CLP_STATIC_ASSERT((CLP_INST_BASE + CLP_INSTANCE_STACK) * 4 <= 256, instance_walk_stack_within_256_bytes);
 
-/* The two levels are two loops, one inside the other: the top level on the
- * world ray until a leaf (one instance) comes up, then the instance's mesh
- * on the object-space ray until the stack is back at the depth it had on
- * entry. The world ray's RayPre is made again from its origin and
- * direction for each top-level stretch: *world is ray_prepare's (every
- * caller's), so the same bits. */
+static inline float3 slot_float3(const int* s) {
+    return (float3)(as_float(s[0]), as_float(s[1]), as_float(s[2]));
+}
+
+/* One loop walks both levels: the ray it tests (r, rb) is the world ray in
+ * the top level and the instance's object-space ray below it. Entering an
+ * instance (a top-level leaf pops) remembers the stack depth (base); when the
+ * walk would pop below it, the instance is done and the world ray is made
+ * again from its slots (ray_prepare, as every caller made *world: the same
+ * bits). Two nested loops, one per level, took 71 registers at sm_90 for
+ * wf_trace (the top level's loop kept values live through the bottom
+ * level's); one loop with one node site and one leaf site keeps one ray,
+ * and took 64 (63 for wf_shadow) with intersect_box4_ordered's plane rows
+ * from the signs of 1/dir. */
 CLP_WALK CLP_WALK_RESULT instances_walk(CLP_WALK_OUT global const Bvh4Node128* nodes,
                                         global const TriVerts* tris, const RayPre* world, float tmax,
                                         int any_hit, uint* visits CLP_ALPHA_PARAM) {
@@ -100,51 +110,44 @@ CLP_WALK CLP_WALK_RESULT instances_walk(CLP_WALK_OUT global const Bvh4Node128* n
     stack[CLP_INST_WORLD + 5] = as_int(world->dir.z);
     stack[CLP_INST_HIT] = -1;
     int sp = CLP_INST_BASE;
+    int base = -1; /* the stack depth on entering the instance walked now; -1 in the top level */
     int entry = 0;
+    RayPre r = *world;
+    RayBox4 rb = ray_box4(&r);
     for (;;) {
-        const float3 wo = (float3)(as_float(stack[CLP_INST_WORLD + 0]), as_float(stack[CLP_INST_WORLD + 1]),
-                                   as_float(stack[CLP_INST_WORLD + 2]));
-        const float3 wd = (float3)(as_float(stack[CLP_INST_WORLD + 3]), as_float(stack[CLP_INST_WORLD + 4]),
-                                   as_float(stack[CLP_INST_WORLD + 5]));
-        {
-            const RayPre r = ray_prepare(wo, wd);
-            const RayBox4 rb = ray_box4(&r);
-            while (entry >= 0) {
-                CLP_INSTANCE_NODE(rb, r)
-                CLP_INSTANCE_PUSHES(continue)
-                if (sp == CLP_INST_BASE) {
-                    hit.inst = stack[CLP_INST_HIT];
+        if (entry >= 0) {
+            CLP_INSTANCE_NODE(rb, r)
+            CLP_INSTANCE_PUSHES(continue)
+        } else {
+            const uint ref = (uint)~entry;
+            global const Bvh4Node128* n = &nodes[ref >> 2];
+            if (base < 0) {
+                /* A top-level leaf: one instance. Its walk starts at its mesh's root. */
+                const int inst = ~n->child[ref & 3u];
+                stack[CLP_INST_NOW] = inst;
+                global const float4* m = (global const float4*)&nodes[inst];
+                const float3 wo = slot_float3(stack + CLP_INST_WORLD), wd = slot_float3(stack + CLP_INST_WORLD + 3);
+                r = ray_prepare(xform_point(m[3], m[4], m[5], wo), xform_dir(m[3], m[4], m[5], wd));
+                rb = ray_box4(&r);
+                base = sp;
+                entry = (int)((global const Instance*)m)->blas_root;
+                continue;
+            }
+            if (leaf_hits(&r, tris, (uint)~n->child[ref & 3u], n->count[ref & 3u], &hit, any_hit CLP_ALPHA_ARG)) {
+                stack[CLP_INST_HIT] = stack[CLP_INST_NOW];
+                if (any_hit) {
+                    hit.inst = stack[CLP_INST_NOW];
                     CLP_WALK_RETURN(hit);
                 }
-                entry = stack[--sp];
             }
-        }
-        /* A top-level leaf: one instance. Its walk starts at its mesh's root. */
-        const int inst = ~nodes[(uint)~entry >> 2].child[(uint)~entry & 3u];
-        global const float4* m = (global const float4*)&nodes[inst];
-        const RayPre r = ray_prepare(xform_point(m[3], m[4], m[5], wo), xform_dir(m[3], m[4], m[5], wd));
-        const RayBox4 rb = ray_box4(&r);
-        const int base = sp;
-        entry = (int)((global const Instance*)m)->blas_root;
-        for (;;) {
-            if (entry >= 0) {
-                CLP_INSTANCE_NODE(rb, r)
-                CLP_INSTANCE_PUSHES(continue)
-            } else {
-                const uint ref = (uint)~entry;
-                global const Bvh4Node128* n = &nodes[ref >> 2];
-                if (leaf_hits(&r, tris, (uint)~n->child[ref & 3u], n->count[ref & 3u], &hit, any_hit CLP_ALPHA_ARG)) {
-                    stack[CLP_INST_HIT] = inst;
-                    if (any_hit) {
-                        hit.inst = inst;
-                        CLP_WALK_RETURN(hit);
-                    }
-                }
-            }
-            if (sp == base) break;
-            entry = stack[--sp];
         }
         if (sp == CLP_INST_BASE) break;
+        if (sp == base) {
+            /* The instance is done: back to the world ray. */
+            r = ray_prepare(slot_float3(stack + CLP_INST_WORLD), slot_float3(stack + CLP_INST_WORLD + 3));
+            rb = ray_box4(&r);
+            base = -1;
+        }
         entry = stack[--sp];
     }
     hit.inst = stack[CLP_INST_HIT];

@@ -97,6 +97,7 @@ TwoLevelBvh build_two_level(const std::vector<const std::vector<glm::vec3>*>& me
         Bvh b = build_bvh(*meshes[m], options);
         out.mesh_stats[m] = b.stats;
         bottom[m] = widen_bvh(b.nodes);
+        out.stats.bottom_depth = std::max(out.stats.bottom_depth, check_wide(bottom[m], b));
         first_tri[m] = std::uint32_t(out.triangles.size());
         glm::vec3 lo(INFINITY), hi(-INFINITY);
         for (const auto& v : *meshes[m]) {
@@ -127,6 +128,9 @@ TwoLevelBvh build_two_level(const std::vector<const std::vector<glm::vec3>*>& me
         glm::vec3 lo, hi;
         world_box(glm::dmat4(instances[i].object_to_world), mesh_lo[instances[i].mesh], mesh_hi[instances[i].mesh], lo,
                   hi);
+        if (!std::isfinite(lo.x + lo.y + lo.z + hi.x + hi.y + hi.z))
+            throw Error("instance " + std::to_string(i) + ": its transform places mesh " +
+                        std::to_string(instances[i].mesh) + " beyond the float range (its world box is not finite)");
         boxes[3 * i] = lo;
         boxes[3 * i + 1] = hi;
         boxes[3 * i + 2] = lo;
@@ -134,12 +138,24 @@ TwoLevelBvh build_two_level(const std::vector<const std::vector<glm::vec3>*>& me
     BvhBuildOptions top_options = options;
     top_options.max_leaf_size = 1;
     const Bvh top = build_bvh(boxes, top_options);
+    // The walk's one stack holds the top level's pending siblings under the
+    // bottom level's (kernels/shared_structs.h, CLP_INSTANCE_MAX_DEPTH4), so
+    // the two 4-wide depths are bounded together. Where the top level's
+    // first widening would pass the bound, the widening that takes two
+    // binary levels per wide one may still bring it within.
+    const int top_room = CLP_INSTANCE_MAX_DEPTH4 - out.stats.bottom_depth;
     std::vector<Bvh4Node128> top_wide = widen_bvh(top.nodes);
     out.stats.top_depth = check_wide(top_wide, top);
-    if (out.stats.top_depth > CLP_TLAS4_MAX_DEPTH)
+    if (out.stats.top_depth > top_room) {
+        top_wide = widen_bvh(top.nodes, WideningRule::TwoLevels);
+        out.stats.top_depth = check_wide(top_wide, top);
+    }
+    if (out.stats.top_depth > top_room)
         throw Error("two-level BVH: the top level over " + std::to_string(instances.size()) + " instances is " +
-                    std::to_string(out.stats.top_depth) + " levels deep, more than the kernels' stack holds (" +
-                    std::to_string(CLP_TLAS4_MAX_DEPTH) + ")");
+                    std::to_string(out.stats.top_depth) + " 4-wide levels deep and the deepest placed mesh's " +
+                    std::to_string(out.stats.bottom_depth) + ", together more than the " +
+                    std::to_string(CLP_INSTANCE_MAX_DEPTH4) +
+                    " the instanced walk's stack holds; place fewer instances, or flatten the scene");
 
     std::size_t total = top_wide.size() + records.size();
     std::vector<std::size_t> root(meshes.size(), 0);

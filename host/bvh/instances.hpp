@@ -25,6 +25,7 @@ struct TwoLevelStats {
     std::size_t meshes = 0, instances = 0;
     std::size_t top_nodes = 0;           // 4-wide top-level nodes
     int top_depth = 0;                   // of the 4-wide top level, root = 1
+    int bottom_depth = 0;                // of the deepest placed mesh's 4-wide tree
     std::size_t top_bytes = 0;           // top-level nodes and instance records
     std::size_t bottom_bytes = 0;        // bottom-level nodes and their triangles
     double top_build_ms = 0, bottom_build_ms = 0;
@@ -44,7 +45,8 @@ struct TwoLevelBvh {
 // first_prim: each mesh's first index in the per-triangle buffers (materials,
 // normals). Throws clpath::Error for an empty mesh, a mesh index out of range,
 // a non-affine, non-finite or singular transform (naming the instance), no
-// instances, a top level deeper than CLP_TLAS4_MAX_DEPTH, or more nodes than
+// instances, a top level and deepest placed mesh deeper together than
+// CLP_INSTANCE_MAX_DEPTH4 4-wide levels (the walk's stack bound), or more nodes than
 // CLP_BVH4_MAX_NODES.
 TwoLevelBvh build_two_level(const std::vector<const std::vector<glm::vec3>*>& meshes,
                             const std::vector<std::uint32_t>& first_prim, const std::vector<InstanceInput>& instances,

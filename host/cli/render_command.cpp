@@ -171,8 +171,14 @@ int run_render(const RenderOptions& o) {
     if (!o.quiet)
         for (const auto& n : scene.notes) std::fprintf(stderr, "clpath: %s\n", n.c_str());
     if (!o.quiet)
-        std::fprintf(stderr, "clpath: loaded '%s' from %s in %.3f s: %zu triangles, %zu materials\n", scene.name.c_str(),
-                     o.scene.c_str(), load_seconds, scene.triangle_count(), scene.materials.size());
+        std::fprintf(stderr, "clpath: loaded '%s' from %s in %.3f s: %zu triangles%s, %zu materials\n",
+                     scene.name.c_str(), o.scene.c_str(), load_seconds, scene.placed_triangle_count(),
+                     scene.instances.empty() ? ""
+                                             : (" placed by " + std::to_string(scene.instances.size()) +
+                                                " instances of " + std::to_string(scene.meshes.size()) +
+                                                (scene.meshes.size() == 1 ? " mesh" : " meshes"))
+                                                   .c_str(),
+                     scene.materials.size());
     // The scene file's render block gives the defaults; options override the settings, never the scene.
     RenderSettings settings = settings_from_scene(scene.render);
     if (o.max_depth) settings.max_depth = *o.max_depth;
@@ -232,7 +238,7 @@ int run_render(const RenderOptions& o) {
         std::string names;
         for (const auto& d : devices) names += (names.empty() ? "" : ", ") + d.describe();
         std::fprintf(stderr, "clpath: rendering '%s' (%zu triangles) at %dx%d with '%s' on %s\n", scene.name.c_str(),
-                     scene.triangle_count(), scene.camera.width, scene.camera.height,
+                     scene.placed_triangle_count(), scene.camera.width, scene.camera.height,
                      integrator_name(settings.integrator), names.c_str());
     }
     SessionOptions so;

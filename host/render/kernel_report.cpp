@@ -109,14 +109,7 @@ const std::vector<KernelBudget>& kernel_budgets() {
         // but for the shading kernels of glTF materials (textures, two GGX
         // lobes), which may take half as many registers again.
         {"wf_camera", "sm_90", 64, 256, nullptr, nullptr},
-        {"wf_trace", "sm_90", 64, 256, nullptr, "-DCLP_HAS_INSTANCES"},
-        // The two-level walk of instanced scenes: one stack for both levels
-        // (CLP_INSTANCE_STACK, 109 entries: 436 bytes, and 32 bytes below
-        // them for the world ray and the hit's instance, traverse_instances.cl).
-        // Not met; held at its figures (sm_90, ptxas 13.0): the stack needs a
-        // depth bound on both levels together, the closest hit's registers
-        // the top level's walk out of the bottom level's way.
-        {"wf_trace", "sm_90", 64, 256, "-DCLP_HAS_INSTANCES", nullptr, 71, 472},
+        {"wf_trace", "sm_90", 64, 256, nullptr, nullptr},
         {"wf_shade", "sm_90", 64, 256, nullptr, "-DCLP_HAS_MAT_GLTF"},
         {"wf_shade", "sm_90", 96, 256, "-DCLP_HAS_MAT_GLTF", nullptr},
         {"wf_light", "sm_90", 64, 256, nullptr, nullptr},
@@ -124,8 +117,7 @@ const std::vector<KernelBudget>& kernel_budgets() {
         {"wf_connect", "sm_90", 96, 256, "-DCLP_HAS_MAT_GLTF", nullptr},
         {"wf_scatter", "sm_90", 64, 256, nullptr, "-DCLP_HAS_MAT_GLTF"},
         {"wf_scatter", "sm_90", 96, 256, "-DCLP_HAS_MAT_GLTF", nullptr},
-        {"wf_shadow", "sm_90", 64, 256, nullptr, "-DCLP_HAS_INSTANCES"},
-        {"wf_shadow", "sm_90", 64, 256, "-DCLP_HAS_INSTANCES", nullptr, 0, 472},
+        {"wf_shadow", "sm_90", 64, 256, nullptr, nullptr},
         {"wf_next_bounce", "sm_90", 64, 256, nullptr, nullptr},
         {"wf_accumulate", "sm_90", 64, 256, nullptr, nullptr},
     };

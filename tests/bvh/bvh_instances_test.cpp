@@ -100,8 +100,50 @@ TEST(BvhInstances, TenThousandInstancesStayShallow) {
     for (int i = 0; i < 10000; ++i)
         inst.push_back({0, glm::translate(glm::mat4(1), {float(i % 100) * 3, 0, float(i / 100) * 3})});
     const TwoLevelBvh t = build_two_level({&a}, {0}, inst);
-    EXPECT_LE(t.stats.top_depth, CLP_TLAS4_MAX_DEPTH);
+    EXPECT_LE(t.stats.top_depth + t.stats.bottom_depth, CLP_INSTANCE_MAX_DEPTH4);
     EXPECT_EQ(t.stats.top_bytes, (t.stats.top_nodes + 10000) * sizeof(Bvh4Node128));
+}
+
+// Triangles, and instances, each twice the size of the last and twice as
+// far out: the binned SAH splits only a few off per level (its bins are
+// even, the sizes not), so both levels are deep, and together they pass the
+// one stack's bound.
+TEST(BvhInstances, TopAndBottomTooDeepTogetherAreRefusedNamingBothDepths) {
+    std::vector<glm::vec3> a;
+    for (int i = 0; i < 50; ++i) {
+        const float s = std::ldexp(1.0f, i);
+        a.insert(a.end(), {{100 * s, 0, 0}, {101 * s, 0, 0}, {100 * s, s, 0}});
+    }
+    std::vector<InstanceInput> inst;
+    for (int i = 0; i < 60; ++i) {
+        const float s = std::ldexp(1.0f, i);
+        inst.push_back({0, glm::scale(glm::translate(glm::mat4(1), {100 * s, 0, 0}), glm::vec3(s))});
+    }
+    try {
+        const TwoLevelBvh deep = build_two_level({&a}, {0}, inst);
+        FAIL() << "a two-level BVH deeper than the walk's stack was built: " << deep.stats.top_depth << " + "
+               << deep.stats.bottom_depth;
+    } catch (const Error& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("over 60 instances"), std::string::npos) << m;
+        EXPECT_NE(m.find("4-wide levels deep and the deepest placed mesh's"), std::string::npos) << m;
+        EXPECT_NE(m.find("together more than the " + std::to_string(CLP_INSTANCE_MAX_DEPTH4)), std::string::npos) << m;
+    }
+    // The first 8 of them fit.
+    inst.resize(8);
+    const TwoLevelBvh t = build_two_level({&a}, {0}, inst);
+    EXPECT_LE(t.stats.top_depth + t.stats.bottom_depth, CLP_INSTANCE_MAX_DEPTH4);
+    EXPECT_GT(t.stats.bottom_depth, 1);
+    // One more, placed past the float range, is named.
+    inst.push_back({0, glm::scale(glm::mat4(1), glm::vec3(0x1p100f))});
+    try {
+        build_two_level({&a}, {0}, inst);
+        FAIL() << "an instance past the float range was placed";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("instance 8: its transform places mesh 0 beyond the float range"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 }  // namespace
