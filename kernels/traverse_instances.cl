@@ -86,7 +86,79 @@ static inline float3 slot_float3(const int* s) {
     return (float3)(as_float(s[0]), as_float(s[1]), as_float(s[2]));
 }
 
-/* One loop walks both levels: the ray it tests (r, rb) is the world ray in
+#ifndef CLP_TARGET_GPU
+/* On a CPU the two levels are two loops, one inside the other: the top
+ * level on the world ray until a leaf (one instance) comes up, then the
+ * instance's mesh on the object-space ray until the stack is back at the
+ * depth it had on entry. The world ray's RayPre is made again from its
+ * origin and direction for each top-level stretch: *world is ray_prepare's
+ * (every caller's), so the same bits. The nodes and leaves are visited in
+ * the same order as by the GPU's one loop below, which traced 0.89x the
+ * rays per second of this one on PoCL (bunnies:100, median of five). */
+CLP_WALK CLP_WALK_RESULT instances_walk(CLP_WALK_OUT global const Bvh4Node128* nodes,
+                                        global const TriVerts* tris, const RayPre* world, float tmax,
+                                        int any_hit, uint* visits CLP_ALPHA_PARAM) {
+    Hit hit;
+    no_hit(&hit, tmax);
+    int stack[CLP_INST_BASE + CLP_INSTANCE_STACK];
+    stack[CLP_INST_WORLD + 0] = as_int(world->org.x);
+    stack[CLP_INST_WORLD + 1] = as_int(world->org.y);
+    stack[CLP_INST_WORLD + 2] = as_int(world->org.z);
+    stack[CLP_INST_WORLD + 3] = as_int(world->dir.x);
+    stack[CLP_INST_WORLD + 4] = as_int(world->dir.y);
+    stack[CLP_INST_WORLD + 5] = as_int(world->dir.z);
+    stack[CLP_INST_HIT] = -1;
+    int sp = CLP_INST_BASE;
+    int entry = 0;
+    for (;;) {
+        const float3 wo = slot_float3(stack + CLP_INST_WORLD), wd = slot_float3(stack + CLP_INST_WORLD + 3);
+        {
+            const RayPre r = ray_prepare(wo, wd);
+            const RayBox4 rb = ray_box4(&r);
+            while (entry >= 0) {
+                CLP_INSTANCE_NODE(rb, r)
+                CLP_INSTANCE_PUSHES(continue)
+                if (sp == CLP_INST_BASE) {
+                    hit.inst = stack[CLP_INST_HIT];
+                    CLP_WALK_RETURN(hit);
+                }
+                entry = stack[--sp];
+            }
+        }
+        /* A top-level leaf: one instance. Its walk starts at its mesh's root. */
+        const int inst = ~nodes[(uint)~entry >> 2].child[(uint)~entry & 3u];
+        global const float4* m = (global const float4*)&nodes[inst];
+        const RayPre r = ray_prepare(xform_point(m[3], m[4], m[5], wo), xform_dir(m[3], m[4], m[5], wd));
+        const RayBox4 rb = ray_box4(&r);
+        const int base = sp;
+        entry = (int)((global const Instance*)m)->blas_root;
+        for (;;) {
+            if (entry >= 0) {
+                CLP_INSTANCE_NODE(rb, r)
+                CLP_INSTANCE_PUSHES(continue)
+            } else {
+                const uint ref = (uint)~entry;
+                global const Bvh4Node128* n = &nodes[ref >> 2];
+                if (leaf_hits(&r, tris, (uint)~n->child[ref & 3u], n->count[ref & 3u], &hit, any_hit CLP_ALPHA_ARG)) {
+                    stack[CLP_INST_HIT] = inst;
+                    if (any_hit) {
+                        hit.inst = inst;
+                        CLP_WALK_RETURN(hit);
+                    }
+                }
+            }
+            if (sp == base) break;
+            entry = stack[--sp];
+        }
+        if (sp == CLP_INST_BASE) break;
+        entry = stack[--sp];
+    }
+    hit.inst = stack[CLP_INST_HIT];
+    CLP_WALK_RETURN(hit);
+}
+
+#else
+/* On a GPU one loop walks both levels: the ray it tests (r, rb) is the world ray in
  * the top level and the instance's object-space ray below it. Entering an
  * instance (a top-level leaf pops) remembers the stack depth (base); when the
  * walk would pop below it, the instance is done and the world ray is made
@@ -153,6 +225,8 @@ CLP_WALK CLP_WALK_RESULT instances_walk(CLP_WALK_OUT global const Bvh4Node128* n
     hit.inst = stack[CLP_INST_HIT];
     CLP_WALK_RETURN(hit);
 }
+
+#endif
 
 #endif
 #endif

@@ -51,8 +51,9 @@ endforeach()
 # calls itself a GPU) with the CPU code. On PoCL the GPU code must give the
 # CPU code's answers bit for bit (bench rays, each batch also checked against
 # its double-precision CPU traversal) and the same image (bench render-ab; a
-# scene with every material, light and environment kind, and the textured
-# scene with its alpha-masked fence).
+# scene with every material, light and environment kind, the textured
+# scene with its alpha-masked fence, and the instanced bunnies, whose GPU
+# walk is one loop over both levels and the CPU's two).
 # (The flat list of object boxes on the Cornell box: on bunny's one object it
 # would test every triangle for every ray.)
 foreach(accel_scene bvh:${CMAKE_SOURCE_DIR}/scenes/bunny.json flat:cornell)
@@ -65,7 +66,7 @@ foreach(accel_scene bvh:${CMAKE_SOURCE_DIR}/scenes/bunny.json flat:cornell)
         LABELS "render" TIMEOUT 600 PASS_REGULAR_EXPRESSION
         "primary: [0-9]+ rays [^\n]* 0 mismatched[^\n]*\n  A/B: [^\n]*answers differ for 0 rays\nshadow: [0-9]+ rays [^\n]* 0 mismatched[^\n]*\n  A/B: [^\n]*answers differ for 0 rays\ndiffuse: [0-9]+ rays [^\n]* 0 mismatched[^\n]*\n  A/B: [^\n]*answers differ for 0 rays")
 endforeach()
-foreach(scene kernels/data/oclgrind-features.json ../scenes/textured/textured.json)
+foreach(scene kernels/data/oclgrind-features.json ../scenes/textured/textured.json ../scenes/bunny-instances.json)
     get_filename_component(name ${scene} NAME_WE)
     add_test(NAME kernel_code.gpu_on_pocl_render.${name}
              COMMAND $<TARGET_FILE:clpath> bench render-ab ${CMAKE_CURRENT_SOURCE_DIR}/${scene} --spp 2 --width 32
