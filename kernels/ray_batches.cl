@@ -1,8 +1,9 @@
 /* The ray-batch benchmark (clpath bench rays, host/bench/ray_batches.cpp):
  * kernels that make the rays (not timed) and kernels that trace a batch
- * (timed), one ray per work-item, through the same walks (accel_closest_hit,
- * accel_any_hit: traverse.cl) the
- * integrator uses (the BVH, or the flat list with -DCLP_ACCEL_FLAT). */
+ * (timed), one ray per work-item, through the same walk (traverse_bvh:
+ * traverse.cl) the integrator uses (the BVH, the flat list with
+ * -DCLP_ACCEL_FLAT, or the two-level BVH of an instanced scene with
+ * -DCLP_HAS_INSTANCES). */
 #ifndef CLP_RAY_BATCHES_CL
 #define CLP_RAY_BATCHES_CL
 
@@ -35,29 +36,64 @@ kernel void batch_primary_rays(constant const CameraData* cam, global BatchRay* 
     o->src = i;
 }
 
-/* The surface point a primary hit found, with its rounding-error bound and
- * its geometric normal turned towards the ray's side. */
-static inline float3 batch_hit_point(global const TriVerts* tris, const BatchRay* r, Hit h, float3* err, float3* n) {
-    global const TriVerts* tv = &tris[h.tri];
+/* The hits of the closest-hit batches as the host reads them: Hit's four
+ * fields. With instances the kernels' Hit also names the instance; the
+ * batches keep the four fields (t, b1, b2, tri) in hits and each hit's
+ * instance in a buffer of its own (insts, CLP_BATCH_INSTS), which the
+ * secondary rays read. */
+#ifdef CLP_HAS_INSTANCES
+#define CLP_BATCH_HITS global float4*
+#define CLP_BATCH_INSTS , global const AccelNode *nodes, global int *insts
+#define CLP_BATCH_INSTS_OUT , global int *insts
+#else
+#define CLP_BATCH_HITS global Hit*
+#define CLP_BATCH_INSTS
+#define CLP_BATCH_INSTS_OUT
+#endif
+
+/* The surface point primary hit k found, with its rounding-error bound and
+ * its geometric normal turned towards the ray's side (in world space: an
+ * instance's triangle moved as the shading moves it, scene_data.cl). */
+static inline float3 batch_hit_point(global const TriVerts* tris, const BatchRay* r, CLP_BATCH_HITS hits, uint k,
+                                     float3* err, float3* n CLP_BATCH_INSTS) {
+#ifdef CLP_HAS_INSTANCES
+    const float4 hv = hits[k];
+    const float b1 = hv.y, b2 = hv.z;
+    global const TriVerts* tv = &tris[as_int(hv.w)];
+#else
+    const float b1 = hits[k].b1, b2 = hits[k].b2;
+    global const TriVerts* tv = &tris[hits[k].tri];
+#endif
     float3 v0 = load3g(tv->v0), v1 = load3g(tv->v1), v2 = load3g(tv->v2);
+#ifdef CLP_HAS_INSTANCES
+    global const float4* im = (global const float4*)&nodes[insts[k]];
+    float3 ng = instance_normal(im, cross(v1 - v0, v2 - v0));
+    float3 p = instance_hit_point(im, v0, v1, v2, b1, b2, err);
+#else
     float3 ng = normalize3(cross(v1 - v0, v2 - v0));
+    float3 p = hit_point(v0, v1, v2, b1, b2, err);
+#endif
     *n = dot(ng, load3(r->d)) < 0.0f ? ng : -ng;
-    return hit_point(v0, v1, v2, h.b1, h.b2, err);
+    return p;
 }
 
 /* Secondary ray i starts at the hit of primary ray src[i] (the host lists the
  * primaries that hit). Shadow: towards the point light, tmax 1 = the light.
  * Diffuse: cosine-distributed about the normal on the ray's side, unbounded.
  * Origins are offset as the integrator's (offset_ray_origin). */
-kernel void batch_secondary_rays(global const TriVerts* tris, global const BatchRay* primary,
-                                 global const Hit* hits, global const uint* src, uint count, float lx, float ly,
-                                 float lz, uint diffuse, uint seed, global BatchRay* out) {
+kernel void batch_secondary_rays(global const TriVerts* tris, global const BatchRay* primary, CLP_BATCH_HITS hits,
+                                 global const uint* src, uint count, float lx, float ly, float lz, uint diffuse,
+                                 uint seed, global BatchRay* out CLP_BATCH_INSTS) {
     uint i = get_global_id(0);
     if (i >= count) return;
     uint k = src[i];
     BatchRay pr = primary[k];
     float3 err, n;
-    float3 p = batch_hit_point(tris, &pr, hits[k], &err, &n);
+#ifdef CLP_HAS_INSTANCES
+    float3 p = batch_hit_point(tris, &pr, hits, k, &err, &n, nodes, insts);
+#else
+    float3 p = batch_hit_point(tris, &pr, hits, k, &err, &n);
+#endif
     float3 w, o;
     float tmax;
     if (diffuse) {
@@ -81,14 +117,19 @@ kernel void batch_secondary_rays(global const TriVerts* tris, global const Batch
 
 /* The timed kernels: closest hit, and any hit (shadow rays). */
 kernel void batch_trace_closest(global const AccelNode* nodes, global const TriVerts* tris,
-                                global const BatchRay* rays, global Hit* hits, uint count) {
+                                global const BatchRay* rays, CLP_BATCH_HITS hits, uint count CLP_BATCH_INSTS_OUT) {
     uint i = get_global_id(0);
     if (i >= count) return;
     global const BatchRay* r = &rays[i];
     RayPre rp = ray_prepare(load3g(r->o), load3g(r->d));
     Hit h;
-    accel_closest_hit(&h, nodes, tris, &rp, r->tmax, 0);
+    traverse_bvh(&h, nodes, tris, &rp, r->tmax, 0, 0);
+#ifdef CLP_HAS_INSTANCES
+    hits[i] = (float4)(h.t, h.b1, h.b2, as_float(h.tri));
+    insts[i] = h.inst;
+#else
     hits[i] = h;
+#endif
 }
 
 kernel void batch_trace_any(global const AccelNode* nodes, global const TriVerts* tris, global const BatchRay* rays,
@@ -98,7 +139,7 @@ kernel void batch_trace_any(global const AccelNode* nodes, global const TriVerts
     global const BatchRay* r = &rays[i];
     RayPre rp = ray_prepare(load3g(r->o), load3g(r->d));
     Hit h;
-    accel_any_hit(&h, nodes, tris, &rp, r->tmax, 0);
+    traverse_bvh(&h, nodes, tris, &rp, r->tmax, 1, 0);
     occluder[i] = h.tri;
 }
 

@@ -98,39 +98,6 @@ typedef struct {
 #define surface_layers_arg(s)
 #endif
 
-#ifdef CLP_HAS_INSTANCES
-/* An object-space normal in world space: the inverse transpose of the
- * object-to-world map applied, W^T n with W the world-to-object rows 3-5 of
- * the instance record im; unit (or zero for a zero n). For the geometric
- * normal too: a mirroring instance (det M < 0) reverses its triangles'
- * winding, so the cross product of the moved edges would point inside, but
- * a flattened copy has two corners swapped back (scene/scene_builder.cpp)
- * and keeps its outside as the front; W^T n is that normal, whatever det's
- * sign, and shading sees a mirrored instance as it sees its flattened copy. */
-static inline float3 instance_normal(global const float4* im, float3 n) {
-    return normalize3(n.x * im[3].xyz + n.y * im[4].xyz + n.z * im[5].xyz);
-}
-
-/* The hit point of barycentrics b1, b2 on the object-space triangle v0 v1 v2
- * of instance im, in world space, with its error bound. The vertices are
- * moved to world space first, so the point is interpolated exactly as on a
- * flattened copy (hit_point); each moved vertex is off its exact image by at
- * most gamma(4) (|M| |v| + |t|) per axis (four terms summed; PBR 3rd
- * ed., 3.9.4), and a convex combination of the vertices is off by at most
- * the largest of those, which is added to hit_point's bound. */
-static inline float3 instance_hit_point(global const float4* im, float3 v0, float3 v1, float3 v2, float b1, float b2,
-                                        float3* err) {
-    const float4 r0 = im[0], r1 = im[1], r2 = im[2];
-    const float3 a0 = fabs(r0.xyz), a1 = fabs(r1.xyz), a2 = fabs(r2.xyz);
-    const float3 vmax = fmax(fabs(v0), fmax(fabs(v1), fabs(v2)));
-    const float3 moved = CLP_GAMMA(4) * (float3)(dot(a0, vmax) + fabs(r0.w), dot(a1, vmax) + fabs(r1.w),
-                                                 dot(a2, vmax) + fabs(r2.w));
-    float3 p = hit_point(xform_point(r0, r1, r2, v0), xform_point(r0, r1, r2, v1), xform_point(r0, r1, r2, v2), b1,
-                         b2, err);
-    *err = (*err + moved) * (1.0f + CLP_GAMMA(2)); /* the sum itself rounded */
-    return p;
-}
-#endif
 
 /* The point h found, in world space, with its rounding-error bound *err and
  * the triangle's unit geometric normal *ng (of the winding; with instances,

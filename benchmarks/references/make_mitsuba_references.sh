@@ -25,6 +25,7 @@ scenes=(
   "cornell-thesis         scenes/cornell-thesis.json                       64 52"
   "cornell-thesis-diffuse scenes/cornell-thesis-diffuse.json               64 52"
   "bunny                  scenes/bunny.json                                64 52"
+  "bunny-instances        scenes/bunny-instances.json                      64 52"
   "far-from-origin        scenes/hard/far-from-origin.json                 64 64"
   "glass-in-glass         scenes/hard/glass-in-glass.json                  64 48"
   "tiny-light             scenes/hard/tiny-light.json                      64 48"

@@ -24,6 +24,12 @@ bool embree_built_in() { return false; }
 
 std::unique_ptr<EmbreeBaseline> make_embree_baseline(const std::vector<glm::vec3>&, EmbreeMode, int) { return nullptr; }
 
+std::unique_ptr<EmbreeBaseline> make_embree_instanced_baseline(const std::vector<const std::vector<glm::vec3>*>&,
+                                                               const std::vector<std::pair<std::uint32_t, glm::mat4>>&,
+                                                               EmbreeMode, int) {
+    return nullptr;
+}
+
 #else
 
 bool embree_built_in() { return true; }
@@ -41,6 +47,9 @@ void init_ray(RTCRay& r, const BatchRay& b) {
 class Baseline final : public EmbreeBaseline {
 public:
     Baseline(const std::vector<glm::vec3>& vertices, int threads, EmbreeMode mode) : embree_(vertices, threads, mode) {}
+    Baseline(const std::vector<const std::vector<glm::vec3>*>& meshes,
+             const std::vector<std::pair<std::uint32_t, glm::mat4>>& placements, int threads, EmbreeMode mode)
+        : embree_(meshes, placements, threads, mode), instanced_(true) {}
 
     EmbreeTiming closest(const std::vector<BatchRay>& rays, int passes, std::vector<std::int64_t>& prim,
                          std::vector<float>& t) override {
@@ -58,7 +67,9 @@ public:
             rtcIntersect1M(embree_.scene(), &ctx, rh, unsigned(e - b), sizeof(RTCRayHit));
             for (std::size_t i = b; i < e; ++i) {
                 const RTCRayHit& h = rh[i - b];
-                prim[i] = h.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1 : std::int64_t(h.hit.primID);
+                prim[i] = h.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1
+                          : instanced_ ? std::int64_t(h.hit.instID[0]) << 32 | std::int64_t(h.hit.primID)
+                                       : std::int64_t(h.hit.primID);
                 t[i] = h.ray.tfar;
             }
         });
@@ -78,8 +89,9 @@ public:
 
     std::string describe() const override {
         char buf[200];
-        std::snprintf(buf, sizeof buf, "Embree %s, %s, high-quality BVH, %d thread%s, built in %.0f ms",
-                      RTC_VERSION_STRING, describe_embree_mode(embree_.mode()).c_str(), embree_.threads(),
+        std::snprintf(buf, sizeof buf, "Embree %s, %s, high-quality BVH%s, %d thread%s, built in %.0f ms",
+                      RTC_VERSION_STRING, describe_embree_mode(embree_.mode()).c_str(),
+                      instanced_ ? "s placed by instances" : "", embree_.threads(),
                       embree_.threads() == 1 ? "" : "s", embree_.build_ms());
         return buf;
     }
@@ -87,6 +99,7 @@ public:
 
 private:
     EmbreeScene embree_;
+    bool instanced_ = false;
 
     // One warm-up pass and `passes` timed ones; each pass: the threads take blocks of kBlock rays in turn.
     template <class Trace>
@@ -128,6 +141,12 @@ private:
 std::unique_ptr<EmbreeBaseline> make_embree_baseline(const std::vector<glm::vec3>& vertices, EmbreeMode mode,
                                                      int threads) {
     return std::make_unique<Baseline>(vertices, threads, mode);
+}
+
+std::unique_ptr<EmbreeBaseline> make_embree_instanced_baseline(
+    const std::vector<const std::vector<glm::vec3>*>& meshes,
+    const std::vector<std::pair<std::uint32_t, glm::mat4>>& placements, EmbreeMode mode, int threads) {
+    return std::make_unique<Baseline>(meshes, placements, threads, mode);
 }
 
 #endif

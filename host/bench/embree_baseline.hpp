@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -25,7 +26,9 @@ struct EmbreeTiming {
 class EmbreeBaseline {
 public:
     virtual ~EmbreeBaseline() = default;
-    // Closest hit of each ray in [0, tmax]: the scene's triangle index (-1: a miss) and t.
+    // Closest hit of each ray in [0, tmax]: the scene's triangle index (-1: a
+    // miss) and t; in an instanced scene, (instance << 32) | the triangle's
+    // index in its mesh.
     virtual EmbreeTiming closest(const std::vector<BatchRay>& rays, int passes, std::vector<std::int64_t>& prim,
                                  std::vector<float>& t) = 0;
     // Whether anything lies on each ray in [0, tmax].
@@ -44,5 +47,10 @@ bool embree_built_in();
 // reports an error.
 std::unique_ptr<EmbreeBaseline> make_embree_baseline(const std::vector<glm::vec3>& vertices, EmbreeMode mode,
                                                      int threads = 0);
+// The same over meshes placed by instances (EmbreeScene's instanced form):
+// (mesh, object-to-world) per placement.
+std::unique_ptr<EmbreeBaseline> make_embree_instanced_baseline(
+    const std::vector<const std::vector<glm::vec3>*>& meshes,
+    const std::vector<std::pair<std::uint32_t, glm::mat4>>& placements, EmbreeMode mode, int threads = 0);
 
 }  // namespace clpath

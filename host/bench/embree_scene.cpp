@@ -21,17 +21,11 @@ std::string describe_embree_mode(EmbreeMode mode) {
 
 namespace clpath {
 
-EmbreeScene::EmbreeScene(const std::vector<glm::vec3>& vertices, int threads, EmbreeMode mode) : mode_(mode) {
-    threads_ = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    device_ = rtcNewDevice(("threads=" + std::to_string(threads_)).c_str());
-    if (!device_) throw Error("Embree: cannot create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
-    const auto t0 = std::chrono::steady_clock::now();
-    scene_ = rtcNewScene(device_);
-    // Robust mode: watertight edges, as the kernels' and the CPU reference's
-    // triangle tests. The default mode leaves the flags as Embree's users do.
-    if (mode == EmbreeMode::Robust) rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+namespace {
+
+// A triangle geometry over vertices (three per triangle), attached to scene.
+void attach_triangles(RTCDevice device, RTCScene scene, const std::vector<glm::vec3>& vertices, const EmbreeScene& owner) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
     const std::size_t n = vertices.size() / 3;
     // Embree's own buffers: it pads them for its 16-byte loads.
@@ -39,7 +33,7 @@ EmbreeScene::EmbreeScene(const std::vector<glm::vec3>& vertices, int threads, Em
         rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
     auto* idx = static_cast<unsigned*>(
         rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
-    check("allocating the geometry");
+    owner.check("allocating the geometry");
     for (std::size_t i = 0; i < 3 * n; ++i) {
         v[3 * i] = vertices[i].x;
         v[3 * i + 1] = vertices[i].y;
@@ -47,15 +41,67 @@ EmbreeScene::EmbreeScene(const std::vector<glm::vec3>& vertices, int threads, Em
         idx[i] = unsigned(i);
     }
     rtcCommitGeometry(geom);
-    rtcAttachGeometry(scene_, geom);
+    rtcAttachGeometry(scene, geom);
     rtcReleaseGeometry(geom);
+}
+
+}  // namespace
+
+void EmbreeScene::open(int threads, EmbreeMode mode) {
+    mode_ = mode;
+    threads_ = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    device_ = rtcNewDevice(("threads=" + std::to_string(threads_)).c_str());
+    if (!device_) throw Error("Embree: cannot create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+}
+
+RTCScene EmbreeScene::new_scene() const {
+    RTCScene s = rtcNewScene(device_);
+    // Robust mode: watertight edges, as the kernels' and the CPU reference's
+    // triangle tests. The default mode leaves the flags as Embree's users do.
+    if (mode_ == EmbreeMode::Robust) rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
+    return s;
+}
+
+EmbreeScene::EmbreeScene(const std::vector<glm::vec3>& vertices, int threads, EmbreeMode mode) {
+    open(threads, mode);
+    const auto t0 = std::chrono::steady_clock::now();
+    scene_ = new_scene();
+    attach_triangles(device_, scene_, vertices, *this);
     rtcCommitScene(scene_);
     check("building the scene");
     build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+EmbreeScene::EmbreeScene(const std::vector<const std::vector<glm::vec3>*>& meshes,
+                         const std::vector<std::pair<std::uint32_t, glm::mat4>>& placements, int threads,
+                         EmbreeMode mode) {
+    open(threads, mode);
+    const auto t0 = std::chrono::steady_clock::now();
+    for (const auto* m : meshes) {
+        meshes_.push_back(new_scene());
+        attach_triangles(device_, meshes_.back(), *m, *this);
+        rtcCommitScene(meshes_.back());
+        check("building a mesh's scene");
+    }
+    scene_ = new_scene();
+    for (const auto& [mesh, to_world] : placements) {
+        if (mesh >= meshes_.size()) throw Error("Embree: a placement names mesh " + std::to_string(mesh));
+        RTCGeometry inst = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(inst, meshes_[mesh]);
+        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &to_world[0][0]);
+        rtcCommitGeometry(inst);
+        rtcAttachGeometry(scene_, inst);
+        rtcReleaseGeometry(inst);
+    }
+    rtcCommitScene(scene_);
+    check("building the instances' scene");
+    build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
 EmbreeScene::~EmbreeScene() {
     if (scene_) rtcReleaseScene(scene_);
+    for (RTCScene m : meshes_) rtcReleaseScene(m);
     if (device_) rtcReleaseDevice(device_);
 }
 

@@ -25,6 +25,8 @@ std::string describe_embree_mode(EmbreeMode mode);
 #if CLPATH_WITH_EMBREE
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -38,6 +40,13 @@ public:
     // own (for the build), 0: every hardware thread. Throws clpath::Error
     // when Embree reports an error.
     EmbreeScene(const std::vector<glm::vec3>& vertices, int threads, EmbreeMode mode);
+    // Instanced, as Embree's users place meshes: a scene of its own for
+    // each mesh (its vertices, three per triangle, object space), placed in
+    // the top-level scene by instance geometries (RTC_GEOMETRY_TYPE_INSTANCE)
+    // with each placement's object-to-world map; an instance's geomID is its
+    // index in placements, a hit's primID the triangle's index in its mesh.
+    EmbreeScene(const std::vector<const std::vector<glm::vec3>*>& meshes,
+                const std::vector<std::pair<std::uint32_t, glm::mat4>>& placements, int threads, EmbreeMode mode);
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -52,6 +61,10 @@ public:
 private:
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
+    std::vector<RTCScene> meshes_;  // the instanced meshes' scenes
+
+    void open(int threads, EmbreeMode mode);
+    RTCScene new_scene() const;  // in mode_, high-quality BVH
     int threads_ = 1;
     EmbreeMode mode_ = EmbreeMode::Default;
     double build_ms_ = 0;

@@ -20,6 +20,7 @@ Command add_kernels_command(CLI::App& app);
 // The subcommands of `clpath bench`.
 Command add_bench_scaling_command(CLI::App& bench);
 Command add_bench_rays_command(CLI::App& bench);
+Command add_bench_instances_command(CLI::App& bench);
 Command add_bench_convergence_command(CLI::App& bench);
 Command add_bench_build_command(CLI::App& bench);
 Command add_bench_path_command(CLI::App& bench);

@@ -151,12 +151,13 @@ bool has_wavefront(std::uint32_t integrator) {
     return integrator == CLP_INTEGRATOR_PATH || integrator == CLP_INTEGRATOR_PATH_BSDF;
 }
 
-ProgramSpec ray_batch_program(Accel accel, KernelCode code) {
+ProgramSpec ray_batch_program(Accel accel, KernelCode code, bool instances) {
+    if (instances && accel != Accel::Bvh) throw Error("internal: instances are walked in the BVH only");
     ProgramSpec p;
-    p.name = std::string("rays-") + accel_name(accel);
+    p.name = std::string("rays-") + accel_name(accel) + (instances ? "-instances" : "");
     p.roots = {"ray_batches.cl"};
     p.options = std::string(accel == Accel::Flat ? "-cl-std=CL1.2 -DCLP_ACCEL_FLAT" : "-cl-std=CL1.2") +
-                code_options(code);
+                (instances ? " -DCLP_HAS_INSTANCES" : "") + code_options(code);
     p.kernels = {"batch_primary_rays", "batch_secondary_rays", "batch_trace_closest", "batch_trace_any"};
     return p;
 }
@@ -166,7 +167,10 @@ std::vector<ProgramSpec> scene_programs(const NamedSceneFeatures& scene, KernelC
     list.add_render("scene-" + scene.name, scene.features, scene.settings, "scene " + scene.name);
     if (has_wavefront(scene.settings.integrator))
         list.add_wavefront("scene-" + scene.name, scene.features, scene.settings, "scene " + scene.name + ", wavefront");
-    for (Accel a : {Accel::Bvh, Accel::Flat}) list.add(ray_batch_program(a, code), "bench rays " + scene.name);
+    if (scene.features.instances)
+        list.add(ray_batch_program(Accel::Bvh, code, true), "bench instances " + scene.name);
+    else
+        for (Accel a : {Accel::Bvh, Accel::Flat}) list.add(ray_batch_program(a, code), "bench rays " + scene.name);
     return list.take();
 }
 
@@ -254,6 +258,7 @@ std::vector<ProgramSpec> covering_programs(const std::vector<NamedSceneFeatures>
         list.add_wavefront("path-diffuse-instances", inst, defaults, "wavefront path, diffuse, instances");
     }
     for (Accel a : {Accel::Bvh, Accel::Flat}) list.add(ray_batch_program(a, code), "bench rays");
+    list.add(ray_batch_program(Accel::Bvh, code, true), "bench instances");
     for (const auto& sc : scenes)
         for (auto& p : scene_programs(sc, code)) {
             const std::string covers = p.covers;

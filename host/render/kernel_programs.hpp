@@ -41,8 +41,9 @@ ProgramSpec integrator_program(const KernelFeatures& features, KernelCode code);
 // film_resolve, film_add_exact, film_add_exact_half), for the integrators that have one.
 ProgramSpec wavefront_program(const KernelFeatures& features, KernelCode code);
 bool has_wavefront(std::uint32_t integrator);
-// The ray-batch benchmark's program (clpath bench rays).
-ProgramSpec ray_batch_program(Accel accel, KernelCode code);
+// The ray-batch benchmarks' program (clpath bench rays; with instances, the
+// two-level walk of bench instances, -DCLP_HAS_INSTANCES).
+ProgramSpec ray_batch_program(Accel accel, KernelCode code, bool instances = false);
 
 // A scene's features under a name, for covering_programs.
 struct NamedSceneFeatures {
@@ -53,7 +54,7 @@ struct NamedSceneFeatures {
 
 // The programs of one scene rendered with its settings (the megakernel, and the
 // wavefront where its integrator has one), and benchmarked with bench rays
-// (both structures).
+// (both structures), or, for a scene with instances, bench instances.
 std::vector<ProgramSpec> scene_programs(const NamedSceneFeatures& scene, KernelCode code);
 
 // A set of programs that covers every program a scene can select, with the

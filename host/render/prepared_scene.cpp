@@ -87,25 +87,7 @@ void prepare_instanced(const Scene& scene, const RenderSettings& settings, const
                        PreparedScene& p) {
     if (settings.accel != Accel::Bvh)
         throw Error("scene '" + scene.name + "' places meshes by instances, which only --accel bvh walks");
-    std::vector<const std::vector<glm::vec3>*> meshes;
-    std::vector<std::uint32_t> first_prim;
-    std::vector<InstanceInput> instances;
-    const bool flat = scene.triangle_count() > 0;
-    if (flat) {
-        meshes.push_back(&scene.vertices);
-        first_prim.push_back(0);
-        instances.push_back({0, glm::mat4(1.0f)});
-    }
-    std::size_t prims = scene.triangle_count();
-    for (const auto& m : scene.meshes) {
-        if (prims + m.triangle_count() > 0xffffffffull)
-            throw Error("scene '" + scene.name + "': more distinct triangles than 32-bit indices address");
-        meshes.push_back(&m.vertices);
-        first_prim.push_back(std::uint32_t(prims));
-        prims += m.triangle_count();
-    }
-    for (const auto& in : scene.instances) instances.push_back({in.mesh + (flat ? 1u : 0u), in.object_to_world});
-    TwoLevelBvh two = build_two_level(meshes, first_prim, instances, settings.bvh);
+    TwoLevelBvh two = scene_two_level(scene, settings.bvh);
     for (auto& t : two.triangles) t.light = t.prim < light_of.size() ? light_of[t.prim] : CLP_NO_LIGHT;
     p.accel.triangles = std::move(two.triangles);
     p.instanced_nodes = std::move(two.nodes);
@@ -144,6 +126,28 @@ void prepare_instanced(const Scene& scene, const RenderSettings& settings, const
 }
 
 }  // namespace
+
+TwoLevelBvh scene_two_level(const Scene& scene, const BvhBuildOptions& options) {
+    std::vector<const std::vector<glm::vec3>*> meshes;
+    std::vector<std::uint32_t> first_prim;
+    std::vector<InstanceInput> instances;
+    const bool flat = scene.triangle_count() > 0;
+    if (flat) {
+        meshes.push_back(&scene.vertices);
+        first_prim.push_back(0);
+        instances.push_back({0, glm::mat4(1.0f)});
+    }
+    std::size_t prims = scene.triangle_count();
+    for (const auto& m : scene.meshes) {
+        if (prims + m.triangle_count() > 0xffffffffull)
+            throw Error("scene '" + scene.name + "': more distinct triangles than 32-bit indices address");
+        meshes.push_back(&m.vertices);
+        first_prim.push_back(std::uint32_t(prims));
+        prims += m.triangle_count();
+    }
+    for (const auto& in : scene.instances) instances.push_back({in.mesh + (flat ? 1u : 0u), in.object_to_world});
+    return build_two_level(meshes, first_prim, instances, options);
+}
 
 std::vector<unsigned char> scene_node_bytes(const PreparedScene& s) {
     if (!s.summary.instanced) return device_nodes(s.summary.accel, s.accel);

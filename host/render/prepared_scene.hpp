@@ -71,6 +71,12 @@ struct PreparedScene {
 // environment image cannot be read.
 std::shared_ptr<const PreparedScene> prepare_scene(const Scene& scene, const RenderSettings& settings);
 
+// The two-level BVH of a scene that places meshes by instances, as the
+// kernels walk it: the flat triangles (if any) as one mesh placed once under
+// the identity, then the scene's meshes, each mesh's triangles' .prim after
+// the flat ones'. Throws clpath::Error as build_two_level does.
+TwoLevelBvh scene_two_level(const Scene& scene, const BvhBuildOptions& options);
+
 // The node buffer the kernels traverse, as bytes: device_nodes of the
 // structure, or the two-level nodes of an instanced scene.
 std::vector<unsigned char> scene_node_bytes(const PreparedScene& scene);

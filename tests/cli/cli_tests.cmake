@@ -185,6 +185,18 @@ clpath_cli_test(adaptive_odd_chunk FAIL ARGS render --noise-target 0.1 --chunk 3
 clpath_cli_test(render_bunnies_10000 ARGS render bunnies:10000 --spp 1 --width 32 --height 18
                 -o ${CLI_OUT}/bunnies.pfm
                 OUTPUT "summary: .*triangles=696660002 .*nonfinite=0 .*scene_device_bytes=[1-9][0-9][0-9][0-9][0-9][0-9][0-9] instances=10001 instanced_meshes=2 placed_triangles=696660002 tlas_bytes=")
+# bench instances: the two-level walk's answers are the one-level walk's over
+# the flattened scene, and robust Embree's over the instances, on every ray
+# (both watertight), but for hits within kNearOrigin of a ray's origin,
+# counted apart as bench rays counts them; Embree's default mode is timed,
+# not judged.
+set(INSTANCE_BATCH "[^\n]*\n  clpath flattened: [^\n]*, 0 rays differ, [0-9]+ at the origin\n  Embree instanced default: [^\n]*\n  Embree instanced robust: [^\n]*, 0 rays differ, [0-9]+ at the origin\n  Embree flattened default: [^\n]*\n  Embree flattened robust: [^\n]*\n")
+clpath_cli_test(bench_instances_agree ARGS bench instances bunnies:20 --quick
+                OUTPUT "two-level: [0-9]+ bytes [^\n]*\nflattened: [0-9]+ bytes \\([0-9.]+x the two-level\\)[^\n]*\n.*primary: 12288 rays ${INSTANCE_BATCH}shadow: ${INSTANCE_BATCH}diffuse: ${INSTANCE_BATCH}")
+clpath_cli_test(bench_instances_none FAIL ARGS bench instances cornell --quick
+                OUTPUT "cornell: bench instances: scene 'cornell' places no mesh by instances")
+clpath_cli_test(bench_instances_not_tiled FAIL ARGS bench instances bunnies:2 --width 30 --height 32
+                OUTPUT "width and height must be positive multiples of 4, got 30x32")
 clpath_cli_test(singular_instance FAIL ARGS render ${CMAKE_CURRENT_SOURCE_DIR}/cli/data/singular-instance.json --spp 1
                 -o ${CLI_OUT}/singular-instance.pfm
                 OUTPUT "singular-instance\\.json: objects\\[1\\]\\.instances\\[1\\]\\.scale: the transform is singular"

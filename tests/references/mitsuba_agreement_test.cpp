@@ -80,6 +80,10 @@ const std::vector<Entry>& entries() {
          "smooth tinted glass, rough conductor (roughness 0.09), two-sided area light", 64},
         {"cornell-thesis-diffuse", "scenes/cornell-thesis-diffuse.json", "diffuse, two-sided area light", 16},
         {"bunny", "scenes/bunny.json", "a 70k-triangle mesh with shading normals", 16},
+        // Mitsuba renders the file clpath export writes, where every
+        // instance is a flattened copy: the two-level walk against the flat.
+        {"bunny-instances", "scenes/bunny-instances.json",
+         "one mesh placed three times: as is, mirrored and squashed, stretched and tilted (instances)", 16},
         {"far-from-origin", "scenes/hard/far-from-origin.json", "geometry at 1e6", 16},
         // Lit only through two glass shells: every lit pixel is a caustic
         // found by BSDF sampling alone, heavy-tailed on both sides, and 16

@@ -156,3 +156,21 @@ TEST(KernelPrograms, AScenesProgramIsTheOneItsRenderBuilds) {
     for (const auto& p : all) with_cornell += p.covers.find("scene cornell") != std::string::npos;
     EXPECT_EQ(with_cornell, 2);
 }
+
+// bench instances walks the two levels: an instanced scene's batch program
+// has the two-level walk, and the covering set compiles it (so its batch
+// kernels are held to their budgets, render/kernel_report.cpp).
+TEST(KernelPrograms, AnInstancedScenesBatchProgramWalksTwoLevels) {
+    const Scene scene = load_scene("bunnies:2");
+    const NamedSceneFeatures named{"bunnies", scene_features(scene), settings_from_scene(scene.render)};
+    const auto programs = scene_programs(named, KernelCode::Gpu);
+    ASSERT_EQ(programs.size(), 3u);
+    EXPECT_EQ(programs[2].name, "rays-bvh-instances");
+    EXPECT_TRUE(has_define(programs[2].options, "CLP_HAS_INSTANCES"));
+    EXPECT_FALSE(has_define(ray_batch_program(Accel::Bvh, KernelCode::Gpu).options, "CLP_HAS_INSTANCES"));
+    EXPECT_THROW(ray_batch_program(Accel::Flat, KernelCode::Gpu, true), Error);
+    int covered = 0;
+    for (const auto& p : covering_programs({}, KernelCode::Gpu))
+        covered += p.name == "rays-bvh-instances" && has_define(p.options, "CLP_HAS_INSTANCES");
+    EXPECT_EQ(covered, 1);
+}

@@ -95,7 +95,8 @@ void check_scene(const fs::path& file) {
     EXPECT_EQ(nonfinite, 0u) << "non-finite samples in the original";
     const auto ref = test::reference_from_runs("original", original);
 
-    const Extent e = extent(s);
+    // Of the geometry placed: an instanced mesh's copies count with their own details.
+    const Extent e = extent(s.instances.empty() ? s : flatten_instances(s));
     const double size = glm::length(e.hi - e.lo);
     const double far = std::max({std::fabs(e.lo.x), std::fabs(e.lo.y), std::fabs(e.lo.z), std::fabs(e.hi.x),
                                  std::fabs(e.hi.y), std::fabs(e.hi.z)});

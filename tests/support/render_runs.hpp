@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "image/image.hpp"
 #include "render/render_session.hpp"
@@ -65,6 +66,9 @@ inline Scene placed(const Scene& s, double scale, glm::dvec3 offset) {
     Scene out = s;
     auto move = [&](glm::vec3 p) { return glm::vec3(glm::dvec3(p) * scale + offset); };
     for (auto& v : out.vertices) v = move(v);
+    // Instances: the same meshes, placed by the map composed after theirs.
+    const glm::dmat4 world = glm::translate(glm::dmat4(1.0), offset) * glm::scale(glm::dmat4(1.0), glm::dvec3(scale));
+    for (auto& in : out.instances) in.object_to_world = glm::mat4(world * glm::dmat4(in.object_to_world));
     out.camera.eye = move(s.camera.eye);
     out.camera.target = move(s.camera.target);
     for (auto& l : out.lights) {
