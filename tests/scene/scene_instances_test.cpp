@@ -64,6 +64,19 @@ TEST(SceneInstances, AnEmissiveMeshIsPlacedFlattened) {
     EXPECT_NE(s.notes.back().find("placed flattened"), std::string::npos) << s.notes.back();
 }
 
+// A mesh placed once costs the two-level walk more than it saves: its copy
+// goes into the flat scene (benchmarks/results/pocl-epyc-2core/instancing).
+TEST(SceneInstances, AMeshPlacedOnceIsPlacedFlattened) {
+    const Scene s = parse(R"({"type": "mesh", "file": "tet.obj", "material": "white",
+        "instances": [{"translate": [1, 0, 0], "scale": [1, 2, -1]}]})");
+    EXPECT_TRUE(s.meshes.empty());
+    EXPECT_TRUE(s.instances.empty());
+    EXPECT_EQ(s.triangle_count(), 2u + 4u);
+    ASSERT_FALSE(s.notes.empty());
+    EXPECT_NE(s.notes.back().find("1 copy placed flattened, not instanced (a mesh placed once"), std::string::npos)
+        << s.notes.back();
+}
+
 TEST(SceneInstances, BadEntriesAreNamedByFileAndField) {
     const std::string mesh = R"({"type": "mesh", "file": "tet.obj", "material": "white", "instances": )";
     struct Case {

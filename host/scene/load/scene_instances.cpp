@@ -95,11 +95,20 @@ void place_mesh_instances(Scene& scene, SceneBuilder& builder, const std::string
     const bool has_attributes = (attributes.uvs && !attributes.uvs->empty()) ||
                                 (attributes.tangents && !attributes.tangents->empty()) ||
                                 (attributes.colors && !attributes.colors->empty());
-    if (emissive || textured || has_attributes) {
-        scene.notes.push_back(label + ": " + std::to_string(transforms.size()) + " copies placed flattened, not instanced (" +
-                              (emissive ? "the mesh emits, and the light table lists flattened emitters only"
-                                        : "the mesh has textures, texture coordinates or colours, which instances do not carry") +
-                              ")");
+    // A mesh placed once costs the two-level walk more than it saves: on
+    // bunnies:1 it traced 0.62-0.66x the rays per second of the one-level
+    // BVH over the same triangles (PoCL, benchmarks/results/pocl-epyc-2core/
+    // instancing), so such a mesh is placed as the flat scene places it.
+    const bool once = transforms.size() == 1;
+    if (emissive || textured || has_attributes || once) {
+        scene.notes.push_back(
+            label + ": " + std::to_string(transforms.size()) + (once ? " copy" : " copies") +
+            " placed flattened, not instanced (" +
+            (emissive   ? "the mesh emits, and the light table lists flattened emitters only"
+             : textured || has_attributes
+                 ? "the mesh has textures, texture coordinates or colours, which instances do not carry"
+                 : "a mesh placed once is walked faster in the one-level BVH") +
+            ")");
         for (const auto& t : transforms) builder.add(vertices, normals, t * place, materials, label, attributes);
         return;
     }
