@@ -69,7 +69,7 @@ def main():
         "`clpath kernels --report` (`benchmarks/gpu-compile/run.sh`): the covering set of\n"
         "`host/render/kernel_programs.hpp` (every integrator with every feature, alpha on and off; each\n"
         "feature alone; every feature but one; the flat structure, uniform hemisphere, BSDF-only\n"
-        "sampling; the wavefront of path and path-bsdf; both ray-batch programs) and the programs of\n"
+        "sampling; the wavefront of path and path-bsdf; the ray-batch programs) and the programs of\n"
         "`cornell` and every bundled scene (megakernel and wavefront).\n"
         "NVIDIA: clang-14 (nvptx64-nvidia-nvcl) + libclc + opt/llc 14 + the CUDA toolkit's `ptxas -arch=sm_90 -v`;\n"
         "AMD: clang/llc 14 (gfx90a) and 15 (gfx1100, which LLVM 14 lacks) with libclc 14's amdgcn bitcode,\n"
@@ -109,6 +109,8 @@ def main():
         ("ray batches, BVH", prog("rays-bvh"), "batch_trace_any"),
         ("ray batches, flat list", prog("rays-flat"), "batch_trace_closest"),
         ("ray batches, flat list", prog("rays-flat"), "batch_trace_any"),
+        ("ray batches, instances (two levels)", prog("rays-bvh-instances"), "batch_trace_closest"),
+        ("ray batches, instances (two levels)", prog("rays-bvh-instances"), "batch_trace_any"),
     ])
     wf = lambda text: (lambda rows, k, t: selected(rows, text, k, t))
     shading = ("wf_shade", "wf_light", "wf_connect", "wf_scatter")
@@ -125,6 +127,8 @@ def main():
         ("path-bsdf, every feature", prog("wf-path-bsdf-all"), "wf_scatter"),
         ("path, diffuse alone", prog("wf-path-diffuse"), "wf_scatter"),
         ("path, flat list, every feature", prog("wf-path-flat-all"), "wf_trace"),
+        ("path, diffuse, instances (two levels)", prog("wf-path-diffuse-instances"), "wf_trace"),
+        ("path, diffuse, instances (two levels)", prog("wf-path-diffuse-instances"), "wf_shadow"),
     ]
     specs += [("the most registers of any program", lambda rows, k, t: largest(rows, k, t, "registers"), k)
               for k in ("wf_trace",) + shading + ("wf_shadow",)]
