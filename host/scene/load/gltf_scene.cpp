@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "scene/load/presentation.hpp"
+#include "scene/load/scene_instances.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -39,14 +40,43 @@ void add_gltf(Scene& scene, SceneBuilder& builder, const GltfModel& model, const
         return std::uint32_t(slot);
     };
     static const std::vector<glm::vec3> kNone;
+    // A primitive of a mesh that several nodes place is stored once and
+    // placed by instances, unless it could not be instanced anyway (it
+    // emits, or carries textures or per-vertex attributes: flattened_because);
+    // then, as every primitive placed once, it is added flattened, in node order.
+    std::vector<std::vector<glm::mat4>> placements(model.meshes.size());
+    for (const GltfInstance& inst : model.instances) placements[inst.mesh].push_back(place * inst.world);
+    auto shared = [&](std::size_t mesh, const GltfPrimitive& p, std::uint32_t mat) {
+        return placements[mesh].size() > 1 &&
+               flattened_because(scene, {mat}, VertexAttributes{&p.uvs, &p.tangents, &p.colors}).empty();
+    };
     for (const GltfInstance& inst : model.instances)
         for (const GltfPrimitive& p : model.meshes[inst.mesh]) {
             if (p.vertices.empty()) continue;
             const std::uint32_t mat = scene_material(p.material);
+            if (shared(inst.mesh, p, mat)) continue;
             VertexAttributes attr{&p.uvs, &p.tangents, &p.colors};
             builder.add(p.vertices, smooth ? p.normals : kNone, place * inst.world, {mat}, file + ": " + inst.node + " " + p.path,
                         attr);
         }
+    std::size_t not_shared = 0;  // primitives several nodes place that could not be instanced
+    for (std::size_t m = 0; m < model.meshes.size(); ++m)
+        for (const GltfPrimitive& p : model.meshes[m]) {
+            if (p.vertices.empty()) continue;
+            const std::uint32_t mat = scene_material(p.material);
+            if (!shared(m, p, mat)) {
+                not_shared += placements[m].size() > 1;
+                continue;
+            }
+            const VertexAttributes attr{&p.uvs, &p.tangents, &p.colors};
+            place_mesh_instances(scene, builder,
+                                 file + ": " + p.path + " (placed by " + std::to_string(placements[m].size()) + " nodes)",
+                                 p.vertices, smooth ? p.normals : kNone, {mat}, glm::mat4(1), placements[m], attr);
+        }
+    if (not_shared)
+        scene.notes.push_back(file + ": " + std::to_string(not_shared) +
+                              " mesh primitives placed by several nodes are placed flattened, not instanced (they emit, "
+                              "or carry textures, texture coordinates or colours, which instances do not)");
     const glm::mat3 linear(place);
     for (PunctualLight l : model.lights) {
         l.position = glm::vec3(place * glm::vec4(l.position, 1));
@@ -70,7 +100,7 @@ Scene gltf_scene(const std::string& file, const LoadOptions& options) {
     SceneBuilder builder(s, options.max_triangles);
     add_gltf(s, builder, model, glm::mat4(1), file);
     builder.finish();
-    if (s.triangle_count() == 0) throw Error(file + ": every triangle is degenerate (an empty scene)");
+    if (s.placed_triangle_count() == 0) throw Error(file + ": every triangle is degenerate (an empty scene)");
     // Framed, grounded and lit as a bare OBJ is, keeping what the file brings.
     if (model.camera) s.camera = *model.camera;
     present_model(s, options.presentation, model.camera.has_value());

@@ -18,9 +18,9 @@ struct Bounds {
     float radius() const { return std::max(0.5f * glm::length(hi - lo), 1e-6f); }
 };
 
-Bounds bounds_of(const Scene& s) {
+Bounds bounds_of(const std::vector<glm::vec3>& vertices) {
     Bounds b;
-    for (const auto& v : s.vertices) {
+    for (const auto& v : vertices) {
         b.lo = glm::min(b.lo, v);
         b.hi = glm::max(b.hi, v);
     }
@@ -35,9 +35,9 @@ glm::vec3 from_angles(float azimuth_deg, float elevation_deg) {
 
 // The model's bounding sphere about c: the farthest vertex's distance (a
 // tighter sphere than the box's, so a round model is not framed small).
-float bounding_radius(const Scene& s, glm::vec3 c) {
+float bounding_radius(const std::vector<glm::vec3>& vertices, glm::vec3 c) {
     float r2 = 0;
-    for (const auto& v : s.vertices) {
+    for (const auto& v : vertices) {
         const float d2 = glm::dot(v - c, v - c);
         if (std::isfinite(d2)) r2 = std::max(r2, d2);
     }
@@ -118,7 +118,30 @@ float presentation_irradiance() {
     return luminance(presentation::kSunIrradiance) + float(M_PI) * luminance(presentation::kSkyRadiance);
 }
 
-glm::vec3 presentation_view_direction(const Scene& s) {
+namespace {
+
+// The triangles the scene places, three vertices each: its own, then every
+// instance's copies (corners swapped back where the map mirrors, so the
+// winding still faces out), each mesh's triangles subsampled evenly when all
+// of them would pass kMaxPlaced, so that 10,000 copies of a mesh cost what
+// 2 million triangles cost.
+std::vector<glm::vec3> placed_triangles(const Scene& s) {
+    constexpr std::size_t kMaxPlaced = 2'000'000;
+    if (s.instances.empty()) return s.vertices;
+    std::vector<glm::vec3> out = s.vertices;
+    const std::size_t placed = s.placed_triangle_count() - s.triangle_count();
+    const std::size_t stride = std::max<std::size_t>(1, (placed + kMaxPlaced - 1) / kMaxPlaced);
+    for (const auto& in : s.instances) {
+        const auto& v = s.meshes[in.mesh].vertices;
+        const bool flip = glm::determinant(glm::mat3(in.object_to_world)) < 0;
+        for (std::size_t t = 0; t < v.size() / 3; t += stride)
+            for (int c : {0, flip ? 2 : 1, flip ? 1 : 2})
+                out.push_back(glm::vec3(in.object_to_world * glm::vec4(v[3 * t + std::size_t(c)], 1.0f)));
+    }
+    return out;
+}
+
+glm::vec3 view_direction(const std::vector<glm::vec3>& vertices) {
     // The triangles' area-weighted normals, at most ~200k of them: the score
     // is a sum, and a regular subsample of a big mesh estimates it well.
     // A triangle listed more than once (a face written twice, or a polygon
@@ -126,10 +149,10 @@ glm::vec3 presentation_view_direction(const Scene& s) {
     // box_longline.obj) counts once: else one face outweighs the rest and
     // the view turns face-on to it.
     std::vector<std::array<float, 9>> tris;
-    const std::size_t n = s.triangle_count();
+    const std::size_t n = vertices.size() / 3;
     const std::size_t stride = std::max<std::size_t>(1, n / 200000);
     for (std::size_t t = 0; t < n; t += stride) {
-        std::array<glm::vec3, 3> c{s.vertices[3 * t], s.vertices[3 * t + 1], s.vertices[3 * t + 2]};
+        std::array<glm::vec3, 3> c{vertices[3 * t], vertices[3 * t + 1], vertices[3 * t + 2]};
         // (A non-finite corner would also break the sort's ordering.)
         if (!std::isfinite(c[0].x + c[0].y + c[0].z + c[1].x + c[1].y + c[1].z + c[2].x + c[2].y + c[2].z)) continue;
         // The same triangle from any starting corner, its winding (facing) kept.
@@ -170,17 +193,25 @@ glm::vec3 presentation_view_direction(const Scene& s) {
     return best;
 }
 
+}  // namespace
+
+glm::vec3 presentation_view_direction(const Scene& s) {
+    return s.instances.empty() ? view_direction(s.vertices) : view_direction(placed_triangles(s));
+}
+
 void present_bare_mesh(Scene& s, const PresentationOptions& o) { present_model(s, o, false); }
 
 void present_model(Scene& s, const PresentationOptions& o, bool keep_camera) {
     namespace p = presentation;
-    if (s.triangle_count() == 0) throw Error("internal: present_model on an empty scene");
+    if (s.placed_triangle_count() == 0) throw Error("internal: present_model on an empty scene");
     bool has_own_light = !s.lights.empty();
     for (auto m : s.triangle_material) has_own_light = has_own_light || emits(s.materials[m]);
 
-    const Bounds b = bounds_of(s);
+    std::vector<glm::vec3> copies;  // only for instances: the flat scene's own vertices are measured in place
+    const std::vector<glm::vec3>& placed = s.instances.empty() ? s.vertices : (copies = placed_triangles(s));
+    const Bounds b = bounds_of(placed);
     const glm::vec3 centre = b.centre();
-    const float radius = bounding_radius(s, centre);
+    const float radius = bounding_radius(placed, centre);
     // The model's own light decides, not its mere presence: a helmet whose
     // only emitter is a small visor display would otherwise render black.
     const float own = has_own_light ? own_irradiance(s, centre, radius) : 0.0f;
@@ -204,7 +235,7 @@ void present_model(Scene& s, const PresentationOptions& o, bool keep_camera) {
         d = cam.eye - cam.target;
         d = glm::length(glm::vec2(d.x, d.z)) > 0 ? glm::normalize(d) : glm::vec3(0, 0, 1);
     } else {
-        d = presentation_view_direction(s);
+        d = view_direction(placed);
         cam.width = 640;
         cam.height = 480;
         cam.vfov_degrees = p::kVerticalFov;

@@ -83,10 +83,8 @@ std::vector<glm::mat4> read_instance_transforms(const Value& list) {
     return out;
 }
 
-void place_mesh_instances(Scene& scene, SceneBuilder& builder, const std::string& label,
-                          const std::vector<glm::vec3>& vertices, const std::vector<glm::vec3>& normals,
-                          const std::vector<std::uint32_t>& materials, const glm::mat4& place,
-                          const std::vector<glm::mat4>& transforms, const VertexAttributes& attributes) {
+std::string flattened_because(const Scene& scene, const std::vector<std::uint32_t>& materials,
+                              const VertexAttributes& attributes) {
     bool emissive = false, textured = false;
     for (auto m : materials) {
         emissive = emissive || emits(scene.materials[m]);
@@ -95,20 +93,26 @@ void place_mesh_instances(Scene& scene, SceneBuilder& builder, const std::string
     const bool has_attributes = (attributes.uvs && !attributes.uvs->empty()) ||
                                 (attributes.tangents && !attributes.tangents->empty()) ||
                                 (attributes.colors && !attributes.colors->empty());
+    if (emissive) return "the mesh emits, and the light table lists flattened emitters only";
+    if (textured || has_attributes)
+        return "the mesh has textures, texture coordinates or colours, which instances do not carry";
+    return "";
+}
+
+void place_mesh_instances(Scene& scene, SceneBuilder& builder, const std::string& label,
+                          const std::vector<glm::vec3>& vertices, const std::vector<glm::vec3>& normals,
+                          const std::vector<std::uint32_t>& materials, const glm::mat4& place,
+                          const std::vector<glm::mat4>& transforms, const VertexAttributes& attributes) {
     // A mesh placed once costs the two-level walk more than it saves: on
     // bunnies:1 it traced 0.62-0.66x the rays per second of the one-level
     // BVH over the same triangles (PoCL, benchmarks/results/pocl-epyc-2core/
     // instancing), so such a mesh is placed as the flat scene places it.
-    const bool once = transforms.size() == 1;
-    if (emissive || textured || has_attributes || once) {
-        scene.notes.push_back(
-            label + ": " + std::to_string(transforms.size()) + (once ? " copy" : " copies") +
-            " placed flattened, not instanced (" +
-            (emissive   ? "the mesh emits, and the light table lists flattened emitters only"
-             : textured || has_attributes
-                 ? "the mesh has textures, texture coordinates or colours, which instances do not carry"
-                 : "a mesh placed once is walked faster in the one-level BVH") +
-            ")");
+    std::string because = flattened_because(scene, materials, attributes);
+    if (because.empty() && transforms.size() == 1) because = "a mesh placed once is walked faster in the one-level BVH";
+    if (!because.empty()) {
+        scene.notes.push_back(label + ": " + std::to_string(transforms.size()) +
+                              (transforms.size() == 1 ? " copy" : " copies") + " placed flattened, not instanced (" +
+                              because + ")");
         for (const auto& t : transforms) builder.add(vertices, normals, t * place, materials, label, attributes);
         return;
     }

@@ -28,6 +28,12 @@ std::vector<glm::mat4> read_instance_transforms(const jsonf::Value& list);
 // only), maps a texture or it has texture coordinates or colours (instanced
 // meshes carry none): then each copy is added flattened, and a note says why.
 // Degenerate triangles (after `place`) are dropped, as SceneBuilder does.
+// Why a mesh of these materials and per-vertex attributes cannot be
+// instanced (it emits, maps a texture, has texture coordinates, tangents or
+// colours), or empty when it can.
+std::string flattened_because(const Scene& scene, const std::vector<std::uint32_t>& materials,
+                              const VertexAttributes& attributes);
+
 void place_mesh_instances(Scene& scene, SceneBuilder& builder, const std::string& label,
                           const std::vector<glm::vec3>& vertices, const std::vector<glm::vec3>& normals,
                           const std::vector<std::uint32_t>& materials, const glm::mat4& place,
