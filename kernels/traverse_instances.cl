@@ -120,6 +120,17 @@ static inline float3 slot_float3(const int* s) {
     return (float3)(as_float(s[0]), as_float(s[1]), as_float(s[2]));
 }
 
+/* The slots as a walk starts: the world ray's bits, no hit's instance yet. */
+static inline void slots_start(int* stack, const RayPre* world) {
+    stack[CLP_INST_WORLD + 0] = as_int(world->org.x);
+    stack[CLP_INST_WORLD + 1] = as_int(world->org.y);
+    stack[CLP_INST_WORLD + 2] = as_int(world->org.z);
+    stack[CLP_INST_WORLD + 3] = as_int(world->dir.x);
+    stack[CLP_INST_WORLD + 4] = as_int(world->dir.y);
+    stack[CLP_INST_WORLD + 5] = as_int(world->dir.z);
+    stack[CLP_INST_HIT] = -1;
+}
+
 #ifndef CLP_TARGET_GPU
 /* On a CPU the two levels are two loops, one inside the other: the top
  * level on the world ray until a leaf (one instance) comes up, then the
@@ -135,13 +146,7 @@ CLP_WALK CLP_WALK_RESULT instances_walk(CLP_WALK_OUT global const Bvh4Node128* n
     Hit hit;
     no_hit(&hit, tmax);
     int stack[CLP_INST_BASE + CLP_INSTANCE_STACK];
-    stack[CLP_INST_WORLD + 0] = as_int(world->org.x);
-    stack[CLP_INST_WORLD + 1] = as_int(world->org.y);
-    stack[CLP_INST_WORLD + 2] = as_int(world->org.z);
-    stack[CLP_INST_WORLD + 3] = as_int(world->dir.x);
-    stack[CLP_INST_WORLD + 4] = as_int(world->dir.y);
-    stack[CLP_INST_WORLD + 5] = as_int(world->dir.z);
-    stack[CLP_INST_HIT] = -1;
+    slots_start(stack, world);
     int sp = CLP_INST_BASE;
     int entry = 0;
     for (;;) {
@@ -208,13 +213,7 @@ CLP_WALK CLP_WALK_RESULT instances_walk(CLP_WALK_OUT global const Bvh4Node128* n
     Hit hit;
     no_hit(&hit, tmax);
     int stack[CLP_INST_BASE + CLP_INSTANCE_STACK];
-    stack[CLP_INST_WORLD + 0] = as_int(world->org.x);
-    stack[CLP_INST_WORLD + 1] = as_int(world->org.y);
-    stack[CLP_INST_WORLD + 2] = as_int(world->org.z);
-    stack[CLP_INST_WORLD + 3] = as_int(world->dir.x);
-    stack[CLP_INST_WORLD + 4] = as_int(world->dir.y);
-    stack[CLP_INST_WORLD + 5] = as_int(world->dir.z);
-    stack[CLP_INST_HIT] = -1;
+    slots_start(stack, world);
     int sp = CLP_INST_BASE;
     int base = -1; /* the stack depth on entering the instance walked now; -1 in the top level */
     int entry = 0;
