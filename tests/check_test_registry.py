@@ -33,8 +33,8 @@ def main():
 
     # The slow list: clpath_slow_tests(KIND_OR_PROGRAM name...) calls, # comments. A
     # program's cases are checked where the program is registered (the viewer's
-    # sessions are not where Xvfb is missing); a configured test's name is
-    # checked by CMake itself.
+    # recorded runs are not registered where Xvfb is missing); a configured
+    # test's name is checked by CMake itself.
     programs = {os.path.basename(t["command"][0]) for t in tests if t.get("command")}
     text = re.sub(r"#[^\n]*", "", open(slow_list).read())
     for call in re.findall(r"clpath_slow_tests\(([^)]*)\)", text):

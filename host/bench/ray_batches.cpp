@@ -217,7 +217,8 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     if (o.launches < 1) throw Error("ray batches: at least one timed launch is needed");
     if (!scene.instances.empty())
         throw Error("bench rays: scene '" + scene.name +
-                    "' places meshes by instances, which the ray batches do not walk (they time the one-level BVH)");
+                    "' places meshes by instances, which bench rays does not walk (it times the one-level "
+                    "BVH; bench instances times the two-level walk)");
     if (scene.triangle_count() == 0) throw Error("scene '" + scene.name + "' has no triangles");
     if (o.accel == Accel::Flat && scene.triangle_object.size() != scene.triangle_count())
         throw Error("internal: scene '" + scene.name + "' has no object id for every triangle (needed by flat)");

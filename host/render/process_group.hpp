@@ -1,8 +1,9 @@
 #pragma once
 // The processes one render is spread over (the ranks of an MPI job), as the
-// render session sees them. The render library defines this interface and
-// never links MPI; host/mpi/ implements it. Process 0 leads: it serves the
-// chunk queue to the others and ends with the whole image.
+// chunked, checkpointed render loop sees them. The render library defines
+// this interface and never links MPI; host/mpi/ implements it. Process 0
+// leads: it serves the chunk queue to the others and ends with the whole
+// image.
 #include <cstdint>
 #include <functional>
 #include <string>
