@@ -313,6 +313,22 @@ typedef struct {
     uint pad;
 } AliasEntry;
 
+/* One node of the light BVH (docs/light-bvh.md; Conty Estevez and Kulla 2018),
+ * 32 bytes, in depth-first order: an interior node's first child follows it.
+ * Bounds are quantised, outwards, in the frame of the whole tree (the host's
+ * LightBvh.origin and scale); the cone and the axis are widened by their own
+ * quantisation error, so a node's bounds always contain its lights'. */
+typedef struct {
+    uint qbounds[3]; /* per axis: the quantised lower bound in bits 0-15, the upper in bits 16-31 */
+    uint axis;       /* the cone's axis, octahedral, 16 bits a coordinate */
+    float power;     /* phi: the lights' summed power */
+    uint cones;      /* cos theta_o in bits 0-14, cos theta_e in bits 15-29 (both over [-1, 1]), two-sided bit 30 */
+    uint child;      /* interior: the second child's index; leaf: the light's index in the light table */
+    uint flags;      /* CLP_LIGHT_BVH_LEAF */
+} LightBvhNode;
+#define CLP_LIGHT_BVH_LEAF 1u
+#define CLP_LIGHT_BVH_TWO_SIDED (1u << 30)
+
 /* Camera, already turned into a ray basis by the host:
  * direction(x_ndc, y_ndc) = forward + x_ndc * right + y_ndc * up,
  * where forward is a unit vector and right and up are scaled by tan(fov/2)
@@ -448,6 +464,7 @@ CLP_STATIC_ASSERT(sizeof(CameraData) == 80, camera_is_80_bytes);
 CLP_STATIC_ASSERT(sizeof(FrameParams) == 176, frame_params_is_176_bytes);
 CLP_STATIC_ASSERT(sizeof(Light) == 64, light_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(AliasEntry) == 16, alias_entry_is_16_bytes);
+CLP_STATIC_ASSERT(sizeof(LightBvhNode) == 32, light_bvh_node_is_32_bytes);
 CLP_STATIC_ASSERT(sizeof(Counters) == 16, counters_is_16_bytes);
 CLP_STATIC_ASSERT(sizeof(AccumPixel) == 32, accum_pixel_is_32_bytes);
 CLP_STATIC_ASSERT(sizeof(BatchRay) == 32, batch_ray_is_32_bytes);
