@@ -6,7 +6,7 @@
 #define CLP_SHARED_STRUCT_FIELDS_H
 
 #define CLP_SHARED_STRUCTS(S) \
-    S(BvhNode64) S(Bvh4Node128) S(TriVerts) S(Material) S(MaterialExt) S(Light) S(AliasEntry) S(CameraData) S(FrameParams) S(Counters) \
+    S(BvhNode64) S(Bvh4Node128) S(TriVerts) S(Material) S(MaterialExt) S(Light) S(AliasEntry) S(LightBvhNode) S(CameraData) S(FrameParams) S(Counters) \
     S(AccumPixel) S(BatchRay) S(Hit) S(TextureDesc) S(Instance)
 
 #define CLP_SHARED_FIELDS(F) \
@@ -25,6 +25,8 @@
     F(Light, a) F(Light, type) F(Light, b) F(Light, flags) F(Light, c) F(Light, cos_outer) F(Light, L) \
     F(Light, cos_inner) \
     F(AliasEntry, prob) F(AliasEntry, alias) F(AliasEntry, pmf) F(AliasEntry, pad) \
+    F(LightBvhNode, qbounds) F(LightBvhNode, axis) F(LightBvhNode, power) F(LightBvhNode, cones) \
+    F(LightBvhNode, child) F(LightBvhNode, flags) \
     F(CameraData, eye) F(CameraData, width) F(CameraData, forward) F(CameraData, height) F(CameraData, right) \
     F(CameraData, lens_radius) F(CameraData, up) F(CameraData, focus_distance) \
     F(CameraData, orthographic) F(CameraData, pad0) F(CameraData, pad1) F(CameraData, pad2) \
