@@ -80,7 +80,7 @@ clpath_oclgrind_test(bench_rays.flat OPTIONS ${OCLGRIND_BASIC}
                      OUTPUT "primary: 256 rays .* 0 mismatched.*shadow: .* 0 mismatched.*diffuse: .* 0 mismatched")
 # The test probes.
 clpath_oclgrind_test(probes OPTIONS ${OCLGRIND_STRICT} COMMAND $<TARGET_FILE:probe_kernels_check>
-                     OUTPUT "\\[  PASSED  \\] 8 tests")
+                     OUTPUT "\\[  PASSED  \\] 9 tests")
 # The controls: a kernel that writes past its buffer's end, and one that
 # stores an uninitialised value, must be reported ...
 clpath_oclgrind_test(control_reports_out_of_bounds OPTIONS ${OCLGRIND_BASIC}

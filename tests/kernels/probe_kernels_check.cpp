@@ -12,6 +12,7 @@
 #include "bvh/accel.hpp"
 #include "kernels/shared_struct_fields.h"
 #include "render/environment_map.hpp"
+#include "render/light_bvh.hpp"
 #include "robustness/robustness_probes.hpp"
 #include "scene/scene.hpp"
 #include "scene/shapes.hpp"
@@ -167,6 +168,40 @@ TEST(ProbeKernels, TriangleLight) {
         k.arg(0, lb).arg(1, p.x).arg(2, p.y).arg(3, p.z).arg(4, kN).arg(5, 7u).arg(6, out).arg(7, pdf);
         test::run(k, kN);
     }
+}
+
+TEST(ProbeKernels, LightBvh) {
+    // Two triangles, a point light and the environment: a three-leaf tree.
+    std::vector<Light> lights(4, Light{});
+    for (int t = 0; t < 2; ++t) {
+        const float x = 2.0f * float(t);
+        const float a[3] = {x, 1, 0}, b[3] = {x + 1, 1, 0}, c[3] = {x, 1, 1};
+        for (int i = 0; i < 3; ++i) {
+            lights[t].a[i] = a[i];
+            lights[t].b[i] = b[i];
+            lights[t].c[i] = c[i];
+            lights[t].L[i] = 1;
+        }
+        lights[t].type = CLP_LIGHT_TRIANGLE;
+    }
+    lights[2].type = CLP_LIGHT_POINT;
+    lights[2].L[0] = lights[2].L[1] = lights[2].L[2] = 1;
+    lights[3].type = CLP_LIGHT_ENVIRONMENT;
+    const LightBvh bvh = build_light_bvh(lights);
+    std::vector<cl_uint2> trail;
+    for (std::uint64_t t : bvh.trail) trail.push_back({{std::uint32_t(t), std::uint32_t(t >> 32)}});
+    std::vector<cl_float4> pn, nn;
+    for (std::uint32_t i = 0; i < kN; ++i) {
+        pn.push_back({{0.3f * float(i), 0.0f, 0.5f, (float(i) + 0.5f) / float(kN)}});
+        nn.push_back({{0.0f, i % 2 ? 1.0f : 0.0f, 0.0f, 0.0f}});
+    }
+    Buffer nodes = test::upload(bvh.nodes), tb = test::upload(trail), inf = test::upload(bvh.infinite);
+    Buffer pb = test::upload(pn), nb = test::upload(nn), out = out_buffer<cl_float4>(kN);
+    const cl_float4 origin{{bvh.origin.x, bvh.origin.y, bvh.origin.z, 0}}, scale{{bvh.scale.x, bvh.scale.y, bvh.scale.z, 0}};
+    Kernel k = test::device().kernel(test::probe_program(), "probe_light_bvh");
+    k.arg(0, nodes).arg(1, tb).arg(2, inf).arg(3, origin).arg(4, scale).arg(5, std::uint32_t(bvh.nodes.size()));
+    k.arg(6, std::uint32_t(bvh.infinite.size())).arg(7, kN).arg(8, pb).arg(9, nb).arg(10, out);
+    test::run(k, kN);
 }
 
 TEST(ProbeKernels, Watertight) {

@@ -4,6 +4,7 @@
 #define CLP_PROBES_CL
 
 #include "integrator.cl"
+#include "light_bvh.cl"
 #include "shared_struct_fields.h"
 
 /* The layout the device compiler gives the shared structs: for each struct
@@ -295,5 +296,29 @@ kernel void probe_texture(global const TextureDesc* desc, global const uint* tex
     out[i] = texture_sample(&sd, index, uv[i], srgb);
 }
 #endif
+
+/* The light BVH's pick at pn[i] = (p, u), normal nn[i].xyz: out[i] = (light
+ * as bits, the sampler's pmf, the trail walk's pmf of that light, -). */
+kernel void probe_light_bvh(global const LightBvhNode* nodes, global const uint2* trail, global const uint* infinite,
+                            float4 origin, float4 scale, uint node_count, uint infinite_count, uint count,
+                            global const float4* pn, global const float4* nn, global float4* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    LightBvhData t;
+    t.nodes = nodes;
+    t.trail = trail;
+    t.infinite = infinite;
+    t.origin = origin.xyz;
+    t.scale = scale.xyz;
+    t.node_count = node_count;
+    t.infinite_count = infinite_count;
+    float3 p = pn[i].xyz, n = nn[i].xyz;
+    float pmf = 0.0f;
+    uint li = light_bvh_sample(&t, p, n, pn[i].w, &pmf);
+    int inf = 0;
+    for (uint k = 0; k < infinite_count; ++k) inf |= infinite[k] == li;
+    float walk = li == CLP_NO_LIGHT ? 0.0f : light_bvh_pmf(&t, p, n, li, inf);
+    out[i] = (float4)(as_float(li), pmf, walk, 0.0f);
+}
 
 #endif
