@@ -2,7 +2,8 @@
  * light BVH (Conty Estevez and Kulla 2018; pbrt-v4's BVHLightSampler), built
  * on the host (host/render/light_bvh.*, whose float32 reference this follows
  * operation for operation; docs/light-bvh.md). One u, one root-to-leaf path,
- * no stack. Not yet used by the integrators (CLP_LIGHT_BVH, still to come). */
+ * no stack. Compiled in with CLP_LIGHT_BVH: path.cl picks next-event
+ * estimation's light here and weighs BSDF samples that hit a light by its pmf. */
 #ifndef CLP_LIGHT_BVH_CL
 #define CLP_LIGHT_BVH_CL
 
@@ -29,6 +30,25 @@ static inline float3 lbvh_octahedral(uint e) {
         y = (1.0f - fabs(ox)) * (y >= 0.0f ? 1.0f : -1.0f);
     }
     return normalize((float3)(x, y, z));
+}
+
+/* A unit normal as 16 + 16 bits, octahedral (Cigolle et al. 2014, "A survey
+ * of efficient representations for independent unit vectors"), rounded to
+ * nearest; lbvh_octahedral decodes it. The path keeps the normal it picked a
+ * light with in these 32 bits and decodes it again for that light's MIS
+ * weight, so both see the same normal to the bit. */
+static inline uint lbvh_encode_normal(float3 n) {
+    float s = fabs(n.x) + fabs(n.y) + fabs(n.z);
+    if (!(s > 0.0f)) return 0x80008000u; /* about +z */
+    float x = n.x / s, y = n.y / s;
+    if (n.z < 0.0f) {
+        float ox = x;
+        x = (1.0f - fabs(y)) * (x >= 0.0f ? 1.0f : -1.0f);
+        y = (1.0f - fabs(ox)) * (y >= 0.0f ? 1.0f : -1.0f);
+    }
+    uint qx = (uint)rint(clamp(x * 0.5f + 0.5f, 0.0f, 1.0f) * 65535.0f);
+    uint qy = (uint)rint(clamp(y * 0.5f + 0.5f, 0.0f, 1.0f) * 65535.0f);
+    return qx | qy << 16;
 }
 
 /* pbrt-v4's LightBounds::Importance of node at p (normal n, or 0). */

@@ -1,6 +1,7 @@
 /* Lights for next-event estimation: one table of every light (emissive
  * triangles, point, spot and directional lights, the environment), picked in
- * proportion to power through an alias table built on the host. Kinds a scene
+ * proportion to power through an alias table built on the host, or by the
+ * light BVH (light_bvh.cl, CLP_LIGHT_BVH; the pick is path.cl's). Kinds a scene
  * does not have are compiled out (CLP_HAS_TRIANGLE_LIGHTS, CLP_HAS_DELTA_LIGHTS,
  * CLP_HAS_ENV, CLP_HAS_ENV_MAP). */
 #ifndef CLP_LIGHTS_CL
@@ -178,14 +179,6 @@ static inline float triangle_sample_pdf(global const Light* l, float3 p, float3 
     return dist * dist / (0.5f * area2 * cos_l);
 }
 
-/* Solid-angle pdf of reaching, by light sampling from p, triangle light li at
- * distance dist along a ray of direction d. For MIS when a BSDF-sampled ray
- * hits it. */
-static inline float triangle_light_pdf(global const Light* lights, global const AliasEntry* alias, uint li, float3 p,
-                                float3 d, float dist) {
-    return alias[li].pmf * triangle_sample_pdf(&lights[li], p, d, dist);
-}
-
 /* A point on triangle light l as seen from p (radiance, direction, pdf without
  * the pick, shadow-ray end). Returns 0 when it gives nothing. */
 static inline int sample_triangle_light(global const Light* l, float3 p, float u1, float u2, LightSample* s) {
@@ -234,12 +227,11 @@ static inline int sample_triangle_light(global const Light* l, float3 p, float u
     return 1;
 }
 
-/* Samples a light as seen from p. Returns 0 when it gives nothing. */
-static inline int sample_light(global const Light* lights, global const AliasEntry* alias, constant const FrameParams* fp,
-                        const EnvMap* env, float3 p, float u0, float u1, float u2, LightSample* s) {
-    uint li = pick_light(alias, fp->light_count, u0);
+/* Samples light li, picked with probability pmf, as seen from p. Returns 0
+ * when it gives nothing. */
+static inline int sample_light(global const Light* lights, uint li, float pmf, constant const FrameParams* fp,
+                               const EnvMap* env, float3 p, float u1, float u2, LightSample* s) {
     global const Light* l = &lights[li];
-    float pmf = alias[li].pmf;
     s->infinite = 0;
     s->delta = 0;
     switch (l->type) {

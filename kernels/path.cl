@@ -22,6 +22,9 @@ typedef struct {
     float3 prev_p;   /* the vertex the ray left: light pdfs for MIS are taken from there */
     float prev_pdf;  /* the BSDF pdf of the ray's direction */
     int prev_delta;  /* the ray left a delta lobe (or the camera): what it sees was never light-sampled */
+#ifdef CLP_LIGHT_BVH
+    uint prev_n;     /* the normal the light BVH picked a light with at prev_p (lbvh_encode_normal) */
+#endif
     uint depth;      /* bounces so far */
     Rng rng;
 } PathState;
@@ -44,6 +47,9 @@ static inline void path_start(PathState* ps, Ray ray, Rng rng) {
     ps->prev_p = ray.o;
     ps->prev_pdf = 0.0f;
     ps->prev_delta = 1; /* a camera ray: what it sees directly is never light-sampled */
+#ifdef CLP_LIGHT_BVH
+    ps->prev_n = 0u;
+#endif
     ps->depth = 0;
     ps->rng = rng;
 }
@@ -61,6 +67,16 @@ static inline void path_start(PathState* ps, Ray ray, Rng rng) {
  *   path_scatter      the BSDF sample for the next ray (3 draws)
  *   path_follow       the path takes it (path_turn: all but the new origin) */
 
+/* The probability that next-event estimation at the vertex the ray left
+ * picked light li (is_infinite: the environment), for MIS. */
+static inline float path_light_pmf(const SceneData* sc, const PathState* ps, uint li, int is_infinite) {
+#ifdef CLP_LIGHT_BVH
+    return light_bvh_pmf(&sc->lbvh, ps->prev_p, lbvh_octahedral(ps->prev_n), li, is_infinite);
+#else
+    return sc->alias[li].pmf;
+#endif
+}
+
 /* A ray that left the scene: adds the environment it sees, MIS-weighted
  * against light sampling at the vertex it left. The path ends there. */
 CLP_GPU_INLINE void path_miss(const SceneData* sc, PathState* ps) {
@@ -68,7 +84,7 @@ CLP_GPU_INLINE void path_miss(const SceneData* sc, PathState* ps) {
     float w = 1.0f;
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH
     if (!ps->prev_delta && sc->fp->env_light != CLP_NO_LIGHT)
-        w = power_heuristic(ps->prev_pdf, sc->alias[sc->fp->env_light].pmf * env_pdf(sc->fp, &sc->env, ps->ray.d));
+        w = power_heuristic(ps->prev_pdf, path_light_pmf(sc, ps, sc->fp->env_light, 1) * env_pdf(sc->fp, &sc->env, ps->ray.d));
 #endif
     ps->L += ps->beta * w * env_radiance(sc->fp, &sc->env, ps->ray.d);
 #endif
@@ -83,9 +99,10 @@ CLP_GPU_INLINE int path_roulette(const SceneData* sc, PathState* ps, const Hit* 
     if (max3(Le) > 0.0f) {
         float w = 1.0f;
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH && defined(CLP_HAS_TRIANGLE_LIGHTS)
-        if (!ps->prev_delta && s->tv->light != CLP_NO_LIGHT)
-            w = power_heuristic(ps->prev_pdf,
-                                triangle_light_pdf(sc->lights, sc->alias, s->tv->light, ps->prev_p, ps->ray.d, h->t));
+        const uint li = s->tv->light;
+        if (!ps->prev_delta && li != CLP_NO_LIGHT)
+            w = power_heuristic(ps->prev_pdf, path_light_pmf(sc, ps, li, 0) *
+                                                  triangle_sample_pdf(&sc->lights[li], ps->prev_p, ps->ray.d, h->t));
 #endif
         ps->L += ps->beta * w * Le;
     }
@@ -100,10 +117,21 @@ static inline int path_wants_light(const SceneData* sc, const Surface* s) {
     return sc->fp->light_count > 0 && !material_is_delta(surface_material(s));
 }
 
-/* Next-event estimation's light sample from p, by the path's next three
- * numbers u0, u1, u2. Returns 0 when it gives nothing. */
-CLP_GPU_INLINE int path_light_sample(const SceneData* sc, float3 p, float u0, float u1, float u2, LightSample* ls) {
-    return sample_light(sc->lights, sc->alias, sc->fp, &sc->env, p, u0, u1, u2, ls);
+/* Next-event estimation's light sample from p (n: the normal the light BVH
+ * weighs lights with), by the path's next three numbers u0, u1, u2: u0 picks
+ * the light, by the light BVH or in proportion to power. Returns 0 when it
+ * gives nothing. */
+CLP_GPU_INLINE int path_light_sample(const SceneData* sc, float3 p, float3 n, float u0, float u1, float u2,
+                                     LightSample* ls) {
+#ifdef CLP_LIGHT_BVH
+    float pmf = 0.0f;
+    const uint li = light_bvh_sample(&sc->lbvh, p, n, u0, &pmf);
+    if (li == CLP_NO_LIGHT) return 0;
+#else
+    const uint li = pick_light(sc->alias, sc->fp->light_count, u0);
+    const float pmf = sc->alias[li].pmf;
+#endif
+    return sample_light(sc->lights, li, pmf, sc->fp, &sc->env, p, u1, u2, ls);
 }
 
 /* Next-event estimation at s, given the light sample (lit: path_light_sample's
@@ -177,11 +205,17 @@ static inline int path_step(const SceneData* sc, PathState* ps, const Hit* h, Sh
     Surface s;
     surface_at(&s, sc, h, ps->ray.d);
     if (!path_roulette(sc, ps, h, &s)) return 0;
+#ifdef CLP_LIGHT_BVH
+    const uint nq = lbvh_encode_normal(s.ng); /* the light BVH's normal here, as the wavefront keeps it */
+    const float3 n = lbvh_octahedral(nq);
+#else
+    const float3 n = s.ng;
+#endif
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH
     if (path_wants_light(sc, &s)) {
         float u0 = rng_next(&ps->rng), u1 = rng_next(&ps->rng), u2 = rng_next(&ps->rng);
         LightSample ls;
-        const int lit = path_light_sample(sc, s.p, u0, u1, u2, &ls);
+        const int lit = path_light_sample(sc, s.p, n, u0, u1, u2, &ls);
         const float3 v = path_light_eval(&s, -ps->ray.d, &ls, lit, sh);
         path_light_join(ps, v, sh);
     }
@@ -189,6 +223,9 @@ static inline int path_step(const SceneData* sc, PathState* ps, const Hit* h, Sh
     BsdfSample bs;
     if (!path_scatter(&ps->rng, &s, -ps->ray.d, &bs)) return 0;
     path_follow(ps, &s, &bs);
+#ifdef CLP_LIGHT_BVH
+    ps->prev_n = nq;
+#endif
     return 1;
 }
 

@@ -14,6 +14,7 @@
 #include "materials.cl"
 #include "surface_params.cl"
 #include "lights.cl"
+#include "light_bvh.cl"
 
 /* Both come from the host's settings, never from a default here. */
 #if !defined(CLP_INTEGRATOR) || !defined(CLP_MAX_DEPTH)
@@ -31,6 +32,9 @@ typedef struct {
     global const AliasEntry* alias;
     EnvMap env;
     constant const FrameParams* fp;
+#ifdef CLP_LIGHT_BVH
+    LightBvhData lbvh; /* next-event estimation picks lights by the light BVH (light_bvh.cl) */
+#endif
 #if defined(CLP_SURFACE_PARAMS) || defined(CLP_HAS_ALPHA)
     SurfaceData sd; /* textures, vertex attributes, material extensions (textures.cl): only where read */
 #endif
@@ -185,6 +189,15 @@ static inline void scene_data(SceneData* out, CLP_SCENE_PARAMS constant const Fr
     sc.env.pixels = env_pixels;
     sc.env.cdf = env_cdf;
     sc.fp = fp;
+#ifdef CLP_LIGHT_BVH
+    sc.lbvh.nodes = light_bvh;
+    sc.lbvh.trail = (global const uint2*)light_trails;
+    sc.lbvh.infinite = light_infinite;
+    sc.lbvh.origin = load3c(fp->lbvh_origin);
+    sc.lbvh.scale = load3c(fp->lbvh_scale);
+    sc.lbvh.node_count = fp->lbvh_node_count;
+    sc.lbvh.infinite_count = fp->lbvh_infinite_count;
+#endif
 #if defined(CLP_SURFACE_PARAMS) || defined(CLP_HAS_ALPHA)
     sc.sd.desc = tex_desc;
     sc.sd.texels = texels;

@@ -375,6 +375,13 @@ typedef struct {
     uint adaptive;         /* 1: adaptive sampling; only pixels whose `active` byte is set take samples, and the
                               film's w lanes sum r+g+b of odd-indexed samples (render/adaptive.hpp) */
     uint pad2, pad3;
+    /* The light BVH (CLP_LIGHT_BVH; docs/light-bvh.md): the frame its nodes'
+     * bounds are quantised in (world = origin + q * scale), its node count (0:
+     * no finite light) and the number of infinite lights, picked uniformly. */
+    float lbvh_origin[3];
+    uint lbvh_node_count;
+    float lbvh_scale[3];
+    uint lbvh_infinite_count;
 } FrameParams;
 
 /* Counters the kernels bump with atomics; the host reads and clears them per launch. */
@@ -436,7 +443,7 @@ typedef struct {
     X(AccelNode, nodes) X(TriVerts, tris) X(uint, tri_material) X(Material, materials)    \
     X(MaterialExt, material_ext) X(float, normals) X(Light, lights) X(AliasEntry, alias) \
     X(float4, env_pixels) X(float, env_cdf) X(float, attrs) X(TextureDesc, tex_desc)     \
-    X(uint, texels)
+    X(uint, texels) X(LightBvhNode, light_bvh) X(uint, light_trails) X(uint, light_infinite)
 #ifndef __cplusplus
 #define CLP_SCENE_PARAM(type, name) global const type* name,
 #define CLP_SCENE_PARAMS CLP_SCENE_BUFFERS(CLP_SCENE_PARAM)
@@ -461,7 +468,7 @@ CLP_STATIC_ASSERT(sizeof(MaterialExt) == 64, material_ext_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(((MaterialExt*)0)->texture) == CLP_TEX_SLOTS * sizeof(int), material_ext_texture_slots);
 CLP_STATIC_ASSERT(sizeof(TextureDesc) == 16, texture_desc_is_16_bytes);
 CLP_STATIC_ASSERT(sizeof(CameraData) == 80, camera_is_80_bytes);
-CLP_STATIC_ASSERT(sizeof(FrameParams) == 176, frame_params_is_176_bytes);
+CLP_STATIC_ASSERT(sizeof(FrameParams) == 208, frame_params_is_208_bytes);
 CLP_STATIC_ASSERT(sizeof(Light) == 64, light_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(AliasEntry) == 16, alias_entry_is_16_bytes);
 CLP_STATIC_ASSERT(sizeof(LightBvhNode) == 32, light_bvh_node_is_32_bytes);

@@ -48,7 +48,7 @@
 #define CLP_WF_ROW_O 0u    /* ray origin, prev_pdf */
 #define CLP_WF_ROW_D 1u    /* ray direction, random state (as bits) */
 #define CLP_WF_ROW_L 2u    /* radiance, depth | prev_delta << 31 (as bits) */
-#define CLP_WF_ROW_BETA 3u /* throughput */
+#define CLP_WF_ROW_BETA 3u /* throughput, the light BVH's normal at the vertex the ray left (PathState.prev_n, as bits) */
 #define CLP_WF_ROW_PREV 4u /* the vertex the ray left (stored by wf_shade when the ray
                               reaches it), whether wf_light samples a light there */
 #define CLP_WF_ROW_LS_WI 5u /* the light sample's direction, pdf */
@@ -80,7 +80,11 @@ static inline void wf_load(PathState* out, global const float4* paths, uint capa
     ps.L = l.xyz;
     ps.depth = as_uint(l.w) & 0x7fffffffu;
     ps.prev_delta = (as_uint(l.w) >> 31) != 0u;
-    ps.beta = paths[CLP_WF_ROW_BETA * capacity + slot].xyz;
+    const float4 beta = paths[CLP_WF_ROW_BETA * capacity + slot];
+    ps.beta = beta.xyz;
+#ifdef CLP_LIGHT_BVH
+    ps.prev_n = as_uint(beta.w);
+#endif
     ps.prev_p = paths[CLP_WF_ROW_PREV * capacity + slot].xyz;
     *out = ps;
 }
@@ -196,7 +200,12 @@ kernel void wf_shade(CLP_SCENE_PARAMS constant const FrameParams* fp, global flo
     wf_store_L(paths, capacity, slot, &ps);
     if (!scatters) return;
     wf_rng_state(paths, capacity, slot)[0] = ps.rng.state;
+#ifdef CLP_LIGHT_BVH
+    /* The normal wf_light weighs lights with, and the next vertex's MIS weight. */
+    paths[CLP_WF_ROW_BETA * capacity + slot] = (float4)(ps.beta, as_float(lbvh_encode_normal(s.ng)));
+#else
     paths[CLP_WF_ROW_BETA * capacity + slot] = (float4)(ps.beta, 0.0f);
+#endif
     scatter_queue[atomic_inc(&counts[CLP_WF_SCATTER])] = slot;
 }
 
@@ -218,7 +227,12 @@ kernel void wf_light(CLP_SCENE_PARAMS constant const FrameParams* fp, global flo
     float u0 = rng_next(&rng), u1 = rng_next(&rng), u2 = rng_next(&rng);
     wf_rng_state(paths, capacity, slot)[0] = rng.state;
     LightSample ls;
-    const int lit = path_light_sample(&sc, p.xyz, u0, u1, u2, &ls);
+#ifdef CLP_LIGHT_BVH
+    const float3 n = lbvh_octahedral(as_uint(paths[CLP_WF_ROW_BETA * capacity + slot].w));
+#else
+    const float3 n = (float3)(0.0f);
+#endif
+    const int lit = path_light_sample(&sc, p.xyz, n, u0, u1, u2, &ls);
     paths[CLP_WF_ROW_LS_WI * capacity + slot] = (float4)(ls.wi, ls.pdf);
     paths[CLP_WF_ROW_LS_L * capacity + slot] =
         (float4)(ls.L, as_float((uint)lit | (uint)ls.infinite << 1 | (uint)ls.delta << 2));
@@ -299,12 +313,13 @@ kernel void wf_scatter(CLP_SCENE_PARAMS constant const FrameParams* fp, global f
      * sampling); what it replaces is not read. The radiance is not changed. */
     PathState ps;
     ps.rng = rng;
-    ps.beta = paths[CLP_WF_ROW_BETA * capacity + slot].xyz;
+    const float4 beta = paths[CLP_WF_ROW_BETA * capacity + slot];
+    ps.beta = beta.xyz;
     ps.depth = as_uint(paths[CLP_WF_ROW_L * capacity + slot].w) & 0x7fffffffu;
     path_turn(&ps, &bs);
     paths[CLP_WF_ROW_D * capacity + slot] = (float4)(ps.ray.d, as_float(ps.rng.state));
     ((global uint*)&paths[CLP_WF_ROW_L * capacity + slot])[3] = ps.depth | (ps.prev_delta ? 0x80000000u : 0u);
-    paths[CLP_WF_ROW_BETA * capacity + slot] = (float4)(ps.beta, 0.0f);
+    paths[CLP_WF_ROW_BETA * capacity + slot] = (float4)(ps.beta, beta.w); /* the normal stays (wf_shade's) */
     /* The new ray's origin (path_follow's), from the hit point and its error
      * bound recomputed after the stores above rather than kept through the
      * BSDF sampling: kept, they took 65-67 registers at sm_90 in programs with

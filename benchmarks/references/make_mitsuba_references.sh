@@ -41,11 +41,14 @@ scenes=(
   "gltf-transmission      benchmarks/references/scenes/gltf-transmission.json 64 48"
   "suzanne                scenes/suzanne/Suzanne.gltf                      64 48"
   "textured               scenes/textured/textured.json                    64 48"
+  "room-lamp-sky          scenes/room-lamp-sky.json                        64 48"
+  "city                   city:2000                                        64 48"
 )
 for s in "${scenes[@]}"; do
   read -r name scene w h <<<"$s"
   if [ $# -gt 0 ] && ! printf '%s\n' "$@" | grep -qx "$name"; then continue; fi
-  "$clpath" export "$root/$scene" "$work/$name.json" --format mitsuba --width "$w" --height "$h" > /dev/null
+  src=$scene; [[ $scene == *:* ]] || src=$root/$scene  # a built-in scene (city:N) by name
+  "$clpath" export "$src" "$work/$name.json" --format mitsuba --width "$w" --height "$h" > /dev/null
   nice -n 19 "$python" "$here/mitsuba_reference.py" "$work/$name.json" "$work/$name.exr" --spp "$SPP" --seeds "$SEEDS" \
     2> >(grep -v ': seed ' >&2) | tee -a "$work/log.txt"
   mv "$work/$name.exr" "$work/$name.var.exr" "$here/mitsuba/"

@@ -30,9 +30,23 @@ const std::vector<EstimatorConfig>& estimator_configs() {
     return configs;
 }
 
+const std::vector<EstimatorConfig>& light_sampler_configs() {
+    static const std::vector<EstimatorConfig> configs{
+        // The two light samplers on clpath's default estimator (docs/light-bvh.md).
+        {"lights-power", "clpath's default, lights picked in proportion to power",
+         {{"integrator", "path"}, {"hemisphere", "cosine"}, {"rr", "throughput"}, {"accel", "bvh"},
+          {"light-sampler", "power"}}},
+        {"lights-bvh", "clpath's default, lights picked by the light BVH",
+         {{"integrator", "path"}, {"hemisphere", "cosine"}, {"rr", "throughput"}, {"accel", "bvh"},
+          {"light-sampler", "bvh"}}},
+    };
+    return configs;
+}
+
 std::vector<std::string> estimator_config_names() {
     std::vector<std::string> names;
     for (const auto& c : estimator_configs()) names.push_back(c.name);
+    for (const auto& c : light_sampler_configs()) names.push_back(c.name);
     return names;
 }
 
@@ -43,6 +57,7 @@ void apply_render_option(RenderSettings& s, const std::string& name, const std::
         {"hemisphere", [](RenderSettings& r, const std::string& v) { r.hemisphere = parse_hemisphere(v); }},
         {"rr", [](RenderSettings& r, const std::string& v) { r.rr_rule = parse_rr_rule(v); }},
         {"accel", [](RenderSettings& r, const std::string& v) { r.accel = parse_accel(v); }},
+        {"light-sampler", [](RenderSettings& r, const std::string& v) { r.light_sampler = parse_light_sampler(v); }},
     };
     const auto it = setters.find(name);
     if (it == setters.end()) throw Error("unknown render option '" + name + "'");

@@ -20,6 +20,10 @@ struct EstimatorConfig {
 // The standard list, the thesis configuration first (the baseline of the
 // efficiency column).
 const std::vector<EstimatorConfig>& estimator_configs();
+// clpath's default with lights picked by power, then by the light BVH: run
+// when named (--configs lights-power,lights-bvh), not by default.
+const std::vector<EstimatorConfig>& light_sampler_configs();
+// Both lists' names, the standard list's first.
 std::vector<std::string> estimator_config_names();
 
 // Sets one option by name; throws clpath::Error for an unknown name or a value

@@ -80,9 +80,11 @@ int run_convergence(const ConvergenceArgs& o) {
     limits.max_spp = o.max_spp ? o.max_spp : (o.quick ? 16 : 1024);
     limits.time_cap = o.time_cap;
     std::vector<EstimatorConfig> configs;
-    for (const auto& c : estimator_configs())
-        if (o.configs.empty() || std::find(o.configs.begin(), o.configs.end(), c.name) != o.configs.end())
-            configs.push_back(c);
+    for (const auto* list : {&estimator_configs(), &light_sampler_configs()})
+        for (const auto& c : *list)
+            if (o.configs.empty() ? list == &estimator_configs()
+                                  : std::find(o.configs.begin(), o.configs.end(), c.name) != o.configs.end())
+                configs.push_back(c);
 
     const DeviceInfo device = select_device(o.device);
     Context ctx(device);

@@ -71,6 +71,7 @@ struct RenderOptions {
     bool quiet = false;
     std::string accel = "bvh";
     std::string kernel = "auto";
+    std::string light_sampler = "auto";
     std::uint32_t chunk_samples = 0;
     double checkpoint_seconds = 0;
     std::string checkpoint_file, resume;
@@ -193,6 +194,7 @@ int run_render(const RenderOptions& o) {
     settings.bvh.bins = o.bins;
     settings.accel = parse_accel(o.accel);
     settings.kernel_shape = parse_kernel_shape(o.kernel);
+    settings.light_sampler = parse_light_sampler(o.light_sampler);
     if (o.width) scene.camera.width = o.width;
     if (o.height) scene.camera.height = o.height;
     std::vector<std::string> outputs = o.outputs;
@@ -380,18 +382,28 @@ int run_render(const RenderOptions& o) {
                       is.bottom_bytes, is.bottom_build_ms);
         instance_summary = buf;
     }
+    // The light sampler that ran, and the light BVH it walked.
+    std::string light_summary;
+    if (uses_light_bvh(scene_features(scene), settings)) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, " light_sampler=bvh light_bvh_nodes=%u light_bvh_depth=%d light_bvh_build_ms=%.2f",
+                      result.light_bvh.node_count, result.light_bvh.depth, result.light_bvh.build_ms);
+        light_summary = buf;
+    } else if (settings.integrator == CLP_INTEGRATOR_PATH) {
+        light_summary = " light_sampler=power";
+    }
     std::string device_names;
     for (const auto& d : devices) device_names += (device_names.empty() ? "" : ", ") + d.name;
     std::printf(
         "summary: device=\"%s\" devices=%zu integrator=%s triangles=%zu bvh_build_ms=%.2f bvh_nodes=%zu bvh_sah=%.2f "
         "spp=%llu render_s=%.3f msamples_per_s=%.3f mrays_per_s=%.3f rays=%llu nonfinite=%llu accel=%s kernel=%s "
-        "bytes_to_device=%llu bytes_from_device=%llu scene_device_bytes=%zu%s%s%s%s%s\n",
+        "bytes_to_device=%llu bytes_from_device=%llu scene_device_bytes=%zu%s%s%s%s%s%s\n",
         device_names.c_str(), result.shares.size(), integrator_name(settings.integrator), scene.placed_triangle_count(),
         result.bvh.build_ms, result.bvh.node_count, result.bvh.sah_cost, (unsigned long long)done_spp, wall,
         samples / wall * 1e-6, double(result.rays) / wall * 1e-6, (unsigned long long)result.rays,
         (unsigned long long)result.nonfinite, accel_name(settings.accel), kernel_shapes_used(result.shares).c_str(),
         (unsigned long long)result.bytes_to_device, (unsigned long long)result.bytes_from_device,
-        result.scene_device_bytes, instance_summary.c_str(), result.resumed_spp ? (" resumed_spp=" + std::to_string(result.resumed_spp)).c_str() : "",
+        result.scene_device_bytes, light_summary.c_str(), instance_summary.c_str(), result.resumed_spp ? (" resumed_spp=" + std::to_string(result.resumed_spp)).c_str() : "",
         adaptive_summary.c_str(), result.stopped ? " interrupted=1" : "",
         denoiser && !result.stopped
             ? (" denoise_s=" + std::to_string(denoise_seconds) + " guides_s=" + std::to_string(guides.seconds)).c_str()
@@ -498,6 +510,12 @@ Command add_render_command(CLI::App& app) {
     cmd->add_option("--accel", o->accel, "Acceleration structure: bvh, or flat (one box per object, the thesis "
                     "renderer's; a baseline)")
         ->check(CLI::IsMember(accel_names()))
+        ->capture_default_str();
+    cmd->add_option("--light-sampler", o->light_sampler,
+                    "Next-event estimation's pick of a light: power (alias table), bvh (the light BVH: by each "
+                    "light's estimated contribution at the point), auto (bvh for many lights or lights beside an "
+                    "environment, else power)")
+        ->check(CLI::IsMember(light_sampler_names()))
         ->capture_default_str();
     cmd->add_option("--kernel", o->kernel,
                     "Kernel shape: auto (the one measured faster on the device's kind: mega today), mega (one kernel per path) "

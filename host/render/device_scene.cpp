@@ -17,6 +17,16 @@ std::size_t material_ext_bytes(const PreparedScene& s) {
 std::size_t alias_bytes(const PreparedScene& s) {
     return std::max<std::size_t>(1, s.light_alias.size()) * sizeof(AliasEntry);
 }
+// The light BVH: nodes, a 64-bit trail per light, the infinite lights' indices.
+std::size_t light_bvh_node_bytes(const PreparedScene& s) {
+    return std::max<std::size_t>(1, s.light_bvh.nodes.size()) * sizeof(LightBvhNode);
+}
+std::size_t light_trail_bytes(const PreparedScene& s) {
+    return std::max<std::size_t>(1, s.light_bvh.trail.size()) * sizeof(std::uint64_t);
+}
+std::size_t light_infinite_bytes(const PreparedScene& s) {
+    return std::max<std::size_t>(1, s.light_bvh.infinite.size()) * sizeof(std::uint32_t);
+}
 
 }  // namespace
 
@@ -29,6 +39,7 @@ std::vector<std::pair<std::string, std::size_t>> DeviceScene::memory_needs(const
             {"material extensions", material_ext_bytes(s)},
             {"shading normals", normal_bytes(s)},
             {"lights", light_bytes(s) + alias_bytes(s)},
+            {"light BVH", light_bvh_node_bytes(s) + light_trail_bytes(s) + light_infinite_bytes(s)},
             {"environment image", s.environment.pixels.size() * sizeof(float)},
             {"environment distribution", s.environment.cdf.size() * sizeof(float)},
             {"surface attributes", std::max<std::size_t>(16, s.surface.attrs.size() * sizeof(float))},
@@ -65,6 +76,22 @@ DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s) : ctx_(ctx), summ
                          s.lights.empty() ? static_cast<const void*>(&no_light) : s.lights.data());
     slot(SceneBuffer::alias) = ctx.buffer(alias_bytes(s), CL_MEM_READ_ONLY, "light alias table",
                         s.light_alias.empty() ? static_cast<const void*>(&no_alias) : s.light_alias.data());
+    // The trails as the kernels read them (uint2: low word first), from the
+    // host's 64-bit integers, whatever the host's byte order.
+    std::vector<std::uint32_t> trails(2 * std::max<std::size_t>(1, s.light_bvh.trail.size()), 0u);
+    for (std::size_t i = 0; i < s.light_bvh.trail.size(); ++i) {
+        trails[2 * i] = std::uint32_t(s.light_bvh.trail[i]);
+        trails[2 * i + 1] = std::uint32_t(s.light_bvh.trail[i] >> 32);
+    }
+    const LightBvhNode no_node{};
+    const std::uint32_t no_infinite = CLP_NO_LIGHT;
+    slot(SceneBuffer::light_bvh) =
+        ctx.buffer(light_bvh_node_bytes(s), CL_MEM_READ_ONLY, "light BVH nodes",
+                   s.light_bvh.nodes.empty() ? static_cast<const void*>(&no_node) : s.light_bvh.nodes.data());
+    slot(SceneBuffer::light_trails) = ctx.buffer(light_trail_bytes(s), CL_MEM_READ_ONLY, "light BVH trails", trails.data());
+    slot(SceneBuffer::light_infinite) =
+        ctx.buffer(light_infinite_bytes(s), CL_MEM_READ_ONLY, "infinite lights",
+                   s.light_bvh.infinite.empty() ? static_cast<const void*>(&no_infinite) : s.light_bvh.infinite.data());
     slot(SceneBuffer::env_pixels) = ctx.buffer(s.environment.pixels.size() * sizeof(float), CL_MEM_READ_ONLY, "environment image",
                              s.environment.pixels.data());
     slot(SceneBuffer::env_cdf) = ctx.buffer(s.environment.cdf.size() * sizeof(float), CL_MEM_READ_ONLY, "environment distribution",

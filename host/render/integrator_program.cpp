@@ -152,6 +152,18 @@ FrameParams IntegratorProgram::frame_params(const DeviceScene& scene, const Film
         throw Error("internal: the program's alpha test reads attributes " + std::to_string(features_.alpha_attributes) +
                     ", the scene has " + std::to_string(fp.scene_flags & CLP_SCENE_ATTRIBUTES));
     fp.adaptive = adaptive_ ? 1u : 0u;
+    if (features_.light_bvh) {
+        const LightBvhSummary& lb = sc.light_bvh;
+        if (!lb.built)
+            throw Error("scene '" + sc.name + "' was prepared without its light BVH (lights picked by power); "
+                        "prepare it again to pick lights by the light BVH");
+        for (int a = 0; a < 3; ++a) {
+            fp.lbvh_origin[a] = lb.origin[a];
+            fp.lbvh_scale[a] = lb.scale[a];
+        }
+        fp.lbvh_node_count = lb.node_count;
+        fp.lbvh_infinite_count = lb.infinite_count;
+    }
     return fp;
 }
 

@@ -1,5 +1,9 @@
 #include "render/kernel_features.hpp"
 
+#include <cstdlib>
+
+#include "util/error.hpp"
+
 namespace clpath {
 namespace {
 // Indexed by CLP_MAT_*: the kernels' switch of each kind, from the one table.
@@ -33,9 +37,30 @@ SceneFeatures scene_features(const Scene& scene) {
     f.normals = !scene.normals.empty();
     for (const auto& mesh : scene.meshes) f.normals = f.normals || !mesh.normals.empty();
     f.instances = !scene.instances.empty();
+    std::size_t finite = 0, infinite = f.environment ? 1 : 0;
+    for (std::size_t t = 0; t < scene.triangle_material.size(); ++t)
+        finite += emits(scene.materials[scene.triangle_material[t]]) ? 1 : 0;
+    for (const auto& l : scene.lights) (l.type == PunctualLight::Type::Directional ? infinite : finite) += 1;
+    f.many_lights = finite >= kManyFiniteLights || (finite > 0 && infinite > 0);
     f.attributes = (scene.uvs.empty() ? 0u : CLP_SCENE_UVS) | (scene.tangents.empty() ? 0u : CLP_SCENE_TANGENTS) |
                    (scene.colors.empty() ? 0u : CLP_SCENE_COLORS);
     return f;
+}
+
+bool uses_light_bvh(const SceneFeatures& scene, const RenderSettings& settings) {
+    if (settings.integrator != CLP_INTEGRATOR_PATH || !(scene.emission || scene.lights || scene.environment)) return false;
+    LightSampler s = settings.light_sampler;
+    if (s == LightSampler::Auto) {
+        if (const char* env = std::getenv("CLPATH_LIGHT_SAMPLER"); env && *env) {
+            try {
+                s = parse_light_sampler(env);
+            } catch (const Error& e) {
+                throw Error(std::string("CLPATH_LIGHT_SAMPLER: ") + e.what());
+            }
+        }
+    }
+    if (s == LightSampler::Auto) return scene.many_lights;
+    return s == LightSampler::Bvh;
 }
 
 KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings& settings) {
@@ -59,6 +84,7 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
         f.instances = scene.instances;  // the node buffer's layout: it follows the scene
         f.triangle_lights = f.delta_lights = path;
         f.uniform_hemisphere = uniform;
+        f.light_bvh = uses_light_bvh(scene, settings);  // a choice of estimator, as the hemisphere
         return f;
     }
     f.materials = scene.materials;
@@ -76,6 +102,7 @@ KernelFeatures kernel_features(const SceneFeatures& scene, const RenderSettings&
     f.clearcoat = scene.clearcoat && scene.materials[CLP_MAT_GLTF];
     f.transmission = scene.transmission && scene.materials[CLP_MAT_GLTF];
     f.uniform_hemisphere = uniform && scene.materials[CLP_MAT_DIFFUSE];  // no diffuse surface: nothing to change
+    f.light_bvh = uses_light_bvh(scene, settings);
     return f;
 }
 
@@ -96,6 +123,7 @@ std::string build_options(const KernelFeatures& f) {
     if (f.transmission) o += " -DCLP_HAS_TRANSMISSION";
     if (f.flat_accel) o += " -DCLP_ACCEL_FLAT";
     if (f.instances) o += " -DCLP_HAS_INSTANCES";
+    if (f.light_bvh) o += " -DCLP_LIGHT_BVH";
     if (f.uniform_hemisphere) o += " -DCLP_UNIFORM_HEMISPHERE";
     o += " -DCLP_INTEGRATOR=" + std::to_string(f.integrator) + "u";
     o += " -DCLP_MAX_DEPTH=" + std::to_string(f.max_depth) + "u";

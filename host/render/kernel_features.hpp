@@ -32,6 +32,7 @@ struct KernelFeatures {
     bool clearcoat = false;      // a glTF material has a clear coat (CLP_HAS_CLEARCOAT)
     bool transmission = false;   // a glTF material transmits (CLP_HAS_TRANSMISSION)
     bool instances = false;      // meshes placed by instances: the two-level walk (CLP_HAS_INSTANCES)
+    bool light_bvh = false;      // next-event estimation picks lights by the light BVH (CLP_LIGHT_BVH)
     std::uint32_t integrator = CLP_INTEGRATOR_PATH;
     std::uint32_t max_depth = 16;
 
@@ -45,9 +46,22 @@ struct SceneFeatures {
     bool textures = false, vertex_colors = false, alpha = false;
     bool clearcoat = false, transmission = false;  // glTF layers (KHR_materials_clearcoat, _transmission)
     bool instances = false;  // some mesh is placed by instances (Scene::instances)
+    // Lights that power alone picks badly: at least kManyFiniteLights finite
+    // lights (emissive triangles, point and spot lights), or finite lights
+    // beside an infinite one (an environment, a directional light), where
+    // power gives the small finite ones a tiny share. LightSampler::Auto then
+    // picks by the light BVH.
+    bool many_lights = false;
     std::uint32_t attributes = 0;  // CLP_SCENE_UVS, _TANGENTS, _COLORS: the per-triangle attributes it has
 };
 SceneFeatures scene_features(const Scene& scene);
+constexpr std::size_t kManyFiniteLights = 16;
+
+// Whether a render of a scene with these features picks lights by the light
+// BVH: the path integrator with lights, and LightSampler::Bvh, or Auto (or
+// CLPATH_LIGHT_SAMPLER) choosing it. Throws clpath::Error for a bad
+// CLPATH_LIGHT_SAMPLER.
+bool uses_light_bvh(const SceneFeatures& scene, const RenderSettings& settings);
 
 // What this scene, rendered with these settings, uses. With settings.all_features
 // every feature is on, whatever the scene holds, except alpha, which follows

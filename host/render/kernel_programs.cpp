@@ -48,6 +48,8 @@ const std::vector<SceneSwitch>& scene_switches() {
         // The glTF layers exist only on glTF materials.
         v.push_back({"clearcoat", [](SceneFeatures& f) { f.materials[CLP_MAT_GLTF] = f.clearcoat = true; }});
         v.push_back({"transmission", [](SceneFeatures& f) { f.materials[CLP_MAT_GLTF] = f.transmission = true; }});
+        // Many emitters: the light BVH picks them (LightSampler::Auto).
+        v.push_back({"many-lights", [](SceneFeatures& f) { f.emission = f.many_lights = true; }});
         return v;
     }();
     return s;
@@ -230,6 +232,16 @@ std::vector<ProgramSpec> covering_programs(const std::vector<NamedSceneFeatures>
         RenderSettings bsdf = defaults;
         bsdf.integrator = CLP_INTEGRATOR_PATH_BSDF;
         list.add_render("path-bsdf-" + what, f, bsdf, "BSDF sampling only, " + what);
+    }
+    // Both light samplers with every feature: the programs above pick by the
+    // light BVH where the features include many lights, so the alias table's
+    // pick is added here, and the light BVH's in the wavefront shape below.
+    {
+        RenderSettings power = defaults;
+        power.all_features = true;
+        power.light_sampler = LightSampler::Power;
+        list.add_render("path-all-power", all_opaque, power, "path integrator, every feature, lights picked by power");
+        list.add_wavefront("path-all-power", all_opaque, power, "wavefront path, every feature, lights picked by power");
     }
     // The wavefront shape of both light-transport integrators: its kernels
     // include the megakernel's path and scene code (path.cl, scene_data.cl)

@@ -1,6 +1,7 @@
 #include "render/prepared_scene.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 
@@ -201,6 +202,20 @@ std::shared_ptr<const PreparedScene> prepare_scene(const Scene& scene, const Ren
         p->material_ext.assign(scene.materials.begin(), scene.materials.end());
     p->lights = std::move(lights.lights);
     p->light_alias = std::move(lights.alias);
+    // Built beside the alias table unless only power is to pick (it is small:
+    // 72 bytes a light), so that a render may switch integrators or sampler.
+    if (settings.light_sampler != LightSampler::Power && !p->lights.empty()) {
+        const auto t0 = std::chrono::steady_clock::now();
+        p->light_bvh = build_light_bvh(p->lights);
+        LightBvhSummary& lb = sum.light_bvh;
+        lb.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        lb.built = true;
+        lb.origin = p->light_bvh.origin;
+        lb.scale = p->light_bvh.scale;
+        lb.node_count = std::uint32_t(p->light_bvh.nodes.size());
+        lb.infinite_count = std::uint32_t(p->light_bvh.infinite.size());
+        lb.depth = p->light_bvh.depth;
+    }
     sum.attr_stride = p->surface.attr_stride;
     sum.surface_flags = p->surface.scene_flags | (p->material_ext.empty() ? 0u : CLP_SCENE_MATERIAL_EXT);
     return p;

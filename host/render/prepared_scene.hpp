@@ -16,6 +16,7 @@
 #include "bvh/instances.hpp"
 #include "render/environment_map.hpp"
 #include "render/kernel_features.hpp"
+#include "render/light_bvh.hpp"
 #include "render/light_table.hpp"
 #include "render/surface_buffers.hpp"
 #include "render/settings.hpp"
@@ -26,6 +27,15 @@ namespace clpath {
 
 // What a render needs to know of a scene once its arrays are on a device:
 // small, copied into every DeviceScene.
+// The light BVH as the kernels' frame parameters describe it (FrameParams.lbvh_*).
+struct LightBvhSummary {
+    bool built = false;  // prepared (the settings may pick lights by it); else no buffer holds it
+    glm::vec3 origin{0.0f}, scale{0.0f};
+    std::uint32_t node_count = 0, infinite_count = 0;
+    int depth = 0;
+    double build_ms = 0;
+};
+
 struct SceneSummary {
     std::string name;
     Accel accel = Accel::Bvh;
@@ -43,6 +53,7 @@ struct SceneSummary {
     std::uint32_t surface_flags = 0; // CLP_SCENE_UVS, _TANGENTS, _COLORS, _MATERIAL_EXT
     bool instanced = false;          // the two-level BVH (features.instances); instance_stats says what it holds
     TwoLevelStats instance_stats;
+    LightBvhSummary light_bvh;
 };
 
 struct PreparedScene {
@@ -62,6 +73,8 @@ struct PreparedScene {
     std::vector<glm::vec3> normals;  // empty, or three per scene triangle
     std::vector<Light> lights;
     std::vector<AliasEntry> light_alias;  // parallel to lights
+    // Built unless the settings pick lights by power alone (summary.light_bvh.built).
+    LightBvh light_bvh;
     EnvironmentMap environment;
     SurfaceBuffers surface;  // texture coordinates, tangents, colours and textures
 };

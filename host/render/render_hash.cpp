@@ -62,6 +62,7 @@ std::uint64_t render_hash(const Scene& s, const RenderSettings& r) {
         h.value(v);
     h.value(r.ao_distance);
     h.value(r.all_features);
+    h.value(std::uint32_t(r.light_sampler));
     h.value(r.accel);
     h.value(r.bvh.max_leaf_size);
     h.value(r.bvh.bins);

@@ -231,6 +231,7 @@ SessionResult render_session(const Scene& scene, const RenderSettings& settings,
     r.bvh = farm.bvh_stats();
     r.instanced = farm.scene_summary().instanced;
     r.instances = farm.scene_summary().instance_stats;
+    r.light_bvh = farm.scene_summary().light_bvh;
     r.scene_device_bytes = farm.scene_device_bytes();
     if (group) {
         group->reduce_film(r.film);

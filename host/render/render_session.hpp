@@ -60,6 +60,7 @@ struct SessionResult {
     BvhStats bvh;
     bool instanced = false;           // the scene places meshes by instances: a two-level BVH
     TwoLevelStats instances;          // ... what it holds and what it took to build
+    LightBvhSummary light_bvh;        // the light BVH, when the scene was prepared with it
     std::size_t scene_device_bytes = 0;  // the scene's buffers on one device
     bool stopped = false;             // stop_requested() ended it early
     std::uint64_t resumed_spp = 0;    // samples per pixel the resumed checkpoint held (0: not resumed)

@@ -20,6 +20,20 @@ KernelShape parse_kernel_shape(const std::string& name) {
 
 const char* kernel_shape_name(KernelShape shape) { return kernel_shape_names().at(std::size_t(shape)).c_str(); }
 
+const std::vector<std::string>& light_sampler_names() {
+    static const std::vector<std::string> names{"auto", "power", "bvh"};  // LightSampler
+    return names;
+}
+
+LightSampler parse_light_sampler(const std::string& name) {
+    const auto& names = light_sampler_names();
+    for (std::size_t i = 0; i < names.size(); ++i)
+        if (names[i] == name) return LightSampler(i);
+    throw Error("unknown light sampler '" + name + "' (choose one of: auto, power, bvh)");
+}
+
+const char* light_sampler_name(LightSampler sampler) { return light_sampler_names().at(std::size_t(sampler)).c_str(); }
+
 KernelShape resolve_kernel_shape(const RenderSettings& s, bool gpu) {
     const bool light_transport = s.integrator == CLP_INTEGRATOR_PATH || s.integrator == CLP_INTEGRATOR_PATH_BSDF;
     if (s.kernel_shape == KernelShape::Wavefront && !light_transport)

@@ -30,6 +30,18 @@ KernelShape parse_kernel_shape(const std::string& name);  // clpath::Error namin
 const char* kernel_shape_name(KernelShape shape);
 const std::vector<std::string>& kernel_shape_names();    // "auto", "mega", "wavefront"
 
+// How next-event estimation picks a light: in proportion to power (an alias
+// table), or by the light BVH's estimate of each light's contribution at the
+// shading point (render/light_bvh.hpp). Auto takes the light BVH for scenes
+// with many lights, or with finite lights beside an infinite one
+// (SceneFeatures::many_lights), and power otherwise; under Auto the
+// environment variable CLPATH_LIGHT_SAMPLER=power|bvh replaces that choice
+// (the test suite runs its agreement tests again with bvh).
+enum class LightSampler : std::uint32_t { Auto, Power, Bvh };
+LightSampler parse_light_sampler(const std::string& name);  // clpath::Error naming the choices
+const char* light_sampler_name(LightSampler sampler);
+const std::vector<std::string>& light_sampler_names();    // "auto", "power", "bvh"
+
 struct RenderSettings {
     std::uint32_t integrator = CLP_INTEGRATOR_PATH;
     std::uint32_t max_depth = 16;  // bounces; 0 shows emitters only
@@ -49,6 +61,7 @@ struct RenderSettings {
     // per object (the baseline of the benchmarks). Fixed for a Renderer's life.
     Accel accel = Accel::Bvh;
     KernelShape kernel_shape = KernelShape::Auto;
+    LightSampler light_sampler = LightSampler::Auto;
 };
 
 // Throws clpath::Error for settings no render can use (the depth roulette rule

@@ -171,20 +171,70 @@ Scene bunnies_scene(std::size_t instances) {
     return s;
 }
 
-std::vector<std::string> builtin_scene_names() { return {"cornell", "scaling:N", "room:N", "bunnies:N"}; }
+Scene night_city_scene(std::size_t lights) {
+    if (lights < 1 || lights > 1'000'000)
+        throw Error("city:" + std::to_string(lights) + ": the light count must be in [1, 1000000]");
+    Scene s;
+    const auto ground = s.add_material("street", diffuse({0.3f, 0.3f, 0.32f}));
+    const auto wall = s.add_material("building", diffuse({0.6f, 0.55f, 0.5f}));
+    // Four kinds of lamp, of one power each: power alone cannot tell a lamp
+    // beside the point being shaded from one across the city.
+    const std::uint32_t lamp[4] = {
+        s.add_material("lamp-warm", emitter(glm::vec3(1.0f, 0.75f, 0.45f) * 12.0f)),
+        s.add_material("lamp-white", emitter(glm::vec3(1.0f) * 10.0f)),
+        s.add_material("lamp-cool", emitter(glm::vec3(0.6f, 0.8f, 1.0f) * 11.0f)),
+        s.add_material("lamp-sodium", emitter(glm::vec3(1.0f, 0.5f, 0.15f) * 14.0f))};
+    std::uint32_t state = 424242u;  // a fixed LCG: the same city every time
+    auto next = [&state] {
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) / float(1u << 24);
+    };
+    // 8 x 8 blocks of 4 x 4 with streets 2 wide between them, each block one
+    // building of its own height.
+    constexpr int kBlocks = 8;
+    constexpr float kCell = 6.0f, kHalf = 0.5f * kCell * kBlocks;
+    s.add_triangles(transformed(make_plane(), shape_transform({0, 0, 0}, {0, 0, 0}, {2 * kHalf + 8, 1, 2 * kHalf + 8})),
+                    ground);
+    for (int bx = 0; bx < kBlocks; ++bx)
+        for (int bz = 0; bz < kBlocks; ++bz) {
+            const float h = 1.0f + 5.0f * next();
+            const glm::vec3 centre((float(bx) + 0.5f) * kCell - kHalf, 0.5f * h, (float(bz) + 0.5f) * kCell - kHalf);
+            s.add_triangles(transformed(make_box(), shape_transform(centre, {0, 0, 0}, {4, h, 4})), wall);
+        }
+    // Lamps: small squares facing down over the streets (never inside a block).
+    for (std::size_t i = 0; i < lights;) {
+        const float x = (2 * next() - 1) * kHalf, z = (2 * next() - 1) * kHalf, y = 1.5f + 2.5f * next();
+        const float lx = std::fmod(x + kHalf, kCell), lz = std::fmod(z + kHalf, kCell);
+        if (lx > 0.9f && lx < 5.1f && lz > 0.9f && lz < 5.1f) continue;
+        s.add_triangles(transformed(make_plane(), shape_transform({x, y, z}, {glm::pi<float>(), 0, 0}, {0.25f, 1, 0.25f})),
+                        lamp[i % 4]);
+        ++i;
+    }
+    s.camera.eye = {-20.0f, 18.0f, -26.0f};
+    s.camera.target = {2.0f, 0.0f, 2.0f};
+    s.camera.vfov_degrees = 40;
+    s.camera.width = 480;
+    s.camera.height = 320;
+    s.render.max_depth = 6;
+    s.name = "city-" + std::to_string(lights);
+    return s;
+}
+
+std::vector<std::string> builtin_scene_names() { return {"cornell", "scaling:N", "room:N", "bunnies:N", "city:N"}; }
 
 Scene builtin_scene(const std::string& name) {
     if (name == "cornell") return cornell_thesis_scene();
     // "scaling:1000000" or "scaling:1e6"; the same for "room:".
     for (const auto& [prefix, make] : {std::pair{std::string("scaling:"), &scaling_scene},
                                        std::pair{std::string("room:"), &closed_room_scene},
-                                       std::pair{std::string("bunnies:"), &bunnies_scene}}) {
+                                       std::pair{std::string("bunnies:"), &bunnies_scene},
+                                       std::pair{std::string("city:"), &night_city_scene}}) {
         if (name.rfind(prefix, 0) != 0) continue;
         const std::string count = name.substr(prefix.size());
         char* end = nullptr;
         const double n = std::strtod(count.c_str(), &end);
         if (count.empty() || *end != '\0' || !(n >= 1) || n != std::floor(n) || n > 1e12)
-            throw Error(name + ": expected " + prefix + "N with N a whole number (of triangles; of instances for bunnies:), e.g. " + prefix +
+            throw Error(name + ": expected " + prefix + "N with N a whole number (of triangles; of instances for bunnies:, of lamps for city:), e.g. " + prefix +
                         "100000 or " + prefix + "1e6");
         return make(std::size_t(n));
     }

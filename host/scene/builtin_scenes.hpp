@@ -35,6 +35,13 @@ Scene closed_room_scene(std::size_t triangles);
 inline constexpr const char* kBunnyFile = "/usr/share/glmark2/models/bunny.obj";
 Scene bunnies_scene(std::size_t instances);
 
+// "city:N": a city at night lit by N small lamps (2 N emissive triangles) over
+// its streets, in four colours of one power each, among 8 x 8 buildings of
+// random heights (a fixed seed: the same city every time), no sky. Every lamp
+// lights a few streets: picking lamps by power alone wastes most shadow rays.
+// Counts: 1 to 1,000,000.
+Scene night_city_scene(std::size_t lights);
+
 std::vector<std::string> builtin_scene_names();
 Scene builtin_scene(const std::string& name);
 

@@ -36,6 +36,7 @@
     F(FrameParams, depth_scale) F(FrameParams, env_color) F(FrameParams, env_width) F(FrameParams, env_scale) \
     F(FrameParams, env_rot_cos) F(FrameParams, env_rot_sin) F(FrameParams, env_height) F(FrameParams, scene_flags) \
     F(FrameParams, attr_stride) F(FrameParams, adaptive) F(FrameParams, pad2) F(FrameParams, pad3) \
+    F(FrameParams, lbvh_origin) F(FrameParams, lbvh_node_count) F(FrameParams, lbvh_scale) F(FrameParams, lbvh_infinite_count) \
     F(Counters, rays) F(Counters, nonfinite) F(Counters, pad0) F(Counters, pad1) \
     F(AccumPixel, sum) F(AccumPixel, comp) \
     F(BatchRay, o) F(BatchRay, tmax) F(BatchRay, d) F(BatchRay, src) \

@@ -55,7 +55,7 @@ constexpr int kRuns = 16;
 
 struct Entry {
     std::string name;   // benchmarks/references/mitsuba/NAME.exr
-    std::string scene;  // relative to the repository
+    std::string scene;  // relative to the repository, or a built-in scene (city:N)
     std::string covers;
     std::uint32_t spp;  // per clpath run, at half size
     int factor = 2;     // CI compares at 1/factor of the reference's size
@@ -120,6 +120,9 @@ const std::vector<Entry>& entries() {
          "a bare glTF model: base colour and metallic-roughness textures, the presentation's sky, sun and ground", 16},
         {"textured", "scenes/textured/textured.json",
          "textured OBJ/MTL (map_Kd, map_d cut-out), vertex colours, Suzanne, directional light", 16},
+        // The light BVH's two cases (docs/light-bvh.md), picked by it by default.
+        {"room-lamp-sky", "scenes/room-lamp-sky.json", "a small lamp in a closed room under a bright sky", 16},
+        {"city", "city:2000", "4000 small emissive triangles over streets among buildings (built-in city:2000)", 16},
     };
     return e;
 }
@@ -221,7 +224,8 @@ Rendered render_entry(const Entry& e, const std::function<void(Scene&)>& change 
     const int factor = full_size() ? std::max(1, e.factor / 2) : e.factor;
     Rendered r;
     r.ref = load_reference(e, factor);
-    r.scene = load_scene((repo_root() / e.scene).string());
+    // A built-in scene by name (city:N), else a file of the repository.
+    r.scene = load_scene(e.scene.find(':') != std::string::npos ? e.scene : (repo_root() / e.scene).string());
     if (change) change(r.scene);
     r.scene.camera.width = r.ref.mean.width;
     r.scene.camera.height = r.ref.mean.height;
