@@ -90,25 +90,47 @@ CLP_GPU_INLINE void path_miss(const SceneData* sc, PathState* ps) {
 #endif
 }
 
+/* The MIS weight of the emission the ray sees at s against light sampling at
+ * the vertex the ray left: 1 where that vertex sampled no light (a delta
+ * lobe, the camera, path-bsdf) or s is not in the light table. */
+CLP_GPU_INLINE float path_emission_weight(const SceneData* sc, const PathState* ps, const Hit* h, const Surface* s) {
+    float w = 1.0f;
+#if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH && defined(CLP_HAS_TRIANGLE_LIGHTS)
+    const uint li = s->tv->light;
+    if (!ps->prev_delta && li != CLP_NO_LIGHT) {
+        const float pdf = triangle_sample_pdf(&sc->lights[li], ps->prev_p, ps->ray.d, h->t);
+        w = power_heuristic(ps->prev_pdf, path_light_pmf(sc, ps, li, 0) * pdf);
+    }
+#endif
+    return w;
+}
+
+/* path_roulette with the emission's MIS weight w given: adds the emission of
+ * s times w and plays Russian roulette. */
+CLP_GPU_INLINE int path_roulette_weighted(const SceneData* sc, PathState* ps, const Surface* s, float w) {
+#ifdef CLP_HAS_EMISSION
+    const float3 Le = material_emission(surface_material(s), s->front);
+    if (max3(Le) > 0.0f) ps->L += ps->beta * w * Le;
+#endif
+    if (ps->depth >= CLP_MAX_DEPTH || !material_scatters(surface_material(s))) return 0;
+    return russian_roulette(sc->fp, ps->depth, &ps->beta, &ps->rng);
+}
+
+/* Whether the surface emits (the emission's MIS weight is wanted). */
+static inline int surface_emits(const Surface* s) {
+#ifdef CLP_HAS_EMISSION
+    return max3(material_emission(surface_material(s), s->front)) > 0.0f;
+#else
+    return 0;
+#endif
+}
+
 /* path_roulette: adds the emission of the surface s the ray hit (MIS-weighted
  * against light sampling at the vertex the ray left) and plays Russian
  * roulette. Returns 1 when the path scatters at s, 0 when it has ended. */
 CLP_GPU_INLINE int path_roulette(const SceneData* sc, PathState* ps, const Hit* h, const Surface* s) {
-#ifdef CLP_HAS_EMISSION
-    float3 Le = material_emission(surface_material(s), s->front);
-    if (max3(Le) > 0.0f) {
-        float w = 1.0f;
-#if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH && defined(CLP_HAS_TRIANGLE_LIGHTS)
-        const uint li = s->tv->light;
-        if (!ps->prev_delta && li != CLP_NO_LIGHT)
-            w = power_heuristic(ps->prev_pdf, path_light_pmf(sc, ps, li, 0) *
-                                                  triangle_sample_pdf(&sc->lights[li], ps->prev_p, ps->ray.d, h->t));
-#endif
-        ps->L += ps->beta * w * Le;
-    }
-#endif
-    if (ps->depth >= CLP_MAX_DEPTH || !material_scatters(surface_material(s))) return 0;
-    return russian_roulette(sc->fp, ps->depth, &ps->beta, &ps->rng);
+    const float w = surface_emits(s) ? path_emission_weight(sc, ps, h, s) : 1.0f;
+    return path_roulette_weighted(sc, ps, s, w);
 }
 
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH

@@ -196,13 +196,21 @@ kernel void wf_shade(CLP_SCENE_PARAMS constant const FrameParams* fp, global flo
     const uint light = 0;
 #endif
     paths[CLP_WF_ROW_PREV * capacity + slot] = (float4)(s.p, as_float(light));
-    const int scatters = path_roulette(&sc, &ps, &h, &s);
+#ifdef CLP_LIGHT_BVH
+    ((global uint*)&paths[CLP_WF_ROW_BETA * capacity + slot])[3] = lbvh_encode_normal(s.ng);
+#endif
+    const float w = surface_emits(&s) ? path_emission_weight(&sc, &ps, &h, &s) : 1.0f;
+    /* The radiance and throughput, read again only now: not kept through the
+     * emission's weight (the light BVH's walk, CLP_LIGHT_BVH). */
+    ps.L = paths[CLP_WF_ROW_L * capacity + slot].xyz;
+    ps.beta = paths[CLP_WF_ROW_BETA * capacity + slot].xyz;
+    const int scatters = path_roulette_weighted(&sc, &ps, &s, w);
     wf_store_L(paths, capacity, slot, &ps);
     if (!scatters) return;
     wf_rng_state(paths, capacity, slot)[0] = ps.rng.state;
 #ifdef CLP_LIGHT_BVH
     /* The normal wf_light weighs lights with, and the next vertex's MIS weight. */
-    paths[CLP_WF_ROW_BETA * capacity + slot] = (float4)(ps.beta, as_float(lbvh_encode_normal(s.ng)));
+    vstore3(ps.beta, 0, (global float*)&paths[CLP_WF_ROW_BETA * capacity + slot]);
 #else
     paths[CLP_WF_ROW_BETA * capacity + slot] = (float4)(ps.beta, 0.0f);
 #endif

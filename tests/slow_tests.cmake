@@ -23,3 +23,7 @@ clpath_slow_tests(viewer_session  # the viewer's sessions (where Xvfb is install
     viewer.Session.ScreenshotAgreesWithRenderOfTheSameCamera viewer.Session.ResizedViewRendersLikeOneOpenedAtThatSize
     viewer.Session.KeysSwitchTheViewAndExposure)
 # The fuzz tests (10-30 s each) are `fuzz;slow` in tests/fuzz/CMakeLists.txt.
+# The light BVH against power in distribution, with controls (20-25 s each); both shapes with it forced on (55 s cold).
+clpath_slow_tests(light_sampler_test LightSampler.TheLightBvhChangesNoExpectationUnderTheSky
+    LightSampler.TheLightBvhChangesNoExpectationAmongManyLamps)
+clpath_slow_tests(wavefront_test Wavefront.SameBitsWithTheLightBvh)

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/builtin_scenes.hpp"
 #include "scene/load/scene_loader.hpp"
 #include "util/error.hpp"
 #include "support/repo_root.hpp"
@@ -79,6 +80,30 @@ TEST(Wavefront, SameBitsAsTheMegakernelOnEveryBundledScene) {
 }
 
 // A thin lens draws its two numbers after the pixel jitter in both shapes.
+// The light BVH forced on where Auto picks by power (and on a city of lamps):
+// both shapes pick the same lights with the same pmfs and weigh BSDF hits by
+// the same normal, kept in 32 bits by both (path.cl, PathState.prev_n).
+TEST(Wavefront, SameBitsWithTheLightBvh) {
+    std::vector<Scene> scenes;
+    for (const char* f : {"scenes/cornell-classic.json", "scenes/textured/textured.json", "scenes/hard/tiny-light.json"})
+        scenes.push_back(small((repo_root() / f).string()));
+    Scene city = night_city_scene(200);
+    city.camera.width = 24;
+    city.camera.height = 16;
+    scenes.push_back(city);
+    for (const Scene& s : scenes) {
+        SCOPED_TRACE(s.name);
+        RenderSettings st = settings_from_scene(s.render);
+        st.light_sampler = LightSampler::Bvh;
+        st.seed = 5;
+        const Rendered mega = render_shape(s, st, KernelShape::Mega, 4);
+        const Rendered wave = render_shape(s, st, KernelShape::Wavefront, 4);
+        EXPECT_GT(test::nonzero(mega.image), 0u);
+        EXPECT_EQ(wave.image.rgb, mega.image.rgb);
+        EXPECT_EQ(wave.stats.rays, mega.stats.rays);
+    }
+}
+
 TEST(Wavefront, SameBitsWithAThinLens) {
     const Scene s = small((repo_root() / "benchmarks" / "references" / "scenes" / "thin-lens.json").string());
     ASSERT_TRUE(s.camera.has_lens());
