@@ -105,18 +105,7 @@ CLP_GPU_INLINE float path_emission_weight(const SceneData* sc, const PathState* 
     return w;
 }
 
-/* path_roulette with the emission's MIS weight w given: adds the emission of
- * s times w and plays Russian roulette. */
-CLP_GPU_INLINE int path_roulette_weighted(const SceneData* sc, PathState* ps, const Surface* s, float w) {
-#ifdef CLP_HAS_EMISSION
-    const float3 Le = material_emission(surface_material(s), s->front);
-    if (max3(Le) > 0.0f) ps->L += ps->beta * w * Le;
-#endif
-    if (ps->depth >= CLP_MAX_DEPTH || !material_scatters(surface_material(s))) return 0;
-    return russian_roulette(sc->fp, ps->depth, &ps->beta, &ps->rng);
-}
-
-/* Whether the surface emits (the emission's MIS weight is wanted). */
+/* Whether the surface emits (its emission's MIS weight is wanted). */
 static inline int surface_emits(const Surface* s) {
 #ifdef CLP_HAS_EMISSION
     return max3(material_emission(surface_material(s), s->front)) > 0.0f;
@@ -125,12 +114,30 @@ static inline int surface_emits(const Surface* s) {
 #endif
 }
 
+/* The emission of s times its MIS weight w joins the path's radiance. */
+static inline void path_add_emission(PathState* ps, const Surface* s, float w) {
+#ifdef CLP_HAS_EMISSION
+    const float3 Le = material_emission(surface_material(s), s->front);
+    if (max3(Le) > 0.0f) ps->L += ps->beta * w * Le;
+#endif
+}
+
+/* Russian roulette at s, once its emission is added: 1 when the path scatters there. */
+CLP_GPU_INLINE int path_survives(const SceneData* sc, PathState* ps, const Surface* s) {
+    if (ps->depth >= CLP_MAX_DEPTH || !material_scatters(surface_material(s))) return 0;
+    return russian_roulette(sc->fp, ps->depth, &ps->beta, &ps->rng);
+}
+
 /* path_roulette: adds the emission of the surface s the ray hit (MIS-weighted
  * against light sampling at the vertex the ray left) and plays Russian
- * roulette. Returns 1 when the path scatters at s, 0 when it has ended. */
+ * roulette. Returns 1 when the path scatters at s, 0 when it has ended. (The
+ * wavefront runs its parts apart: wf_shade.) */
 CLP_GPU_INLINE int path_roulette(const SceneData* sc, PathState* ps, const Hit* h, const Surface* s) {
-    const float w = surface_emits(s) ? path_emission_weight(sc, ps, h, s) : 1.0f;
-    return path_roulette_weighted(sc, ps, s, w);
+#ifdef CLP_HAS_EMISSION
+    const float3 Le = material_emission(surface_material(s), s->front);
+    if (max3(Le) > 0.0f) ps->L += ps->beta * path_emission_weight(sc, ps, h, s) * Le;
+#endif
+    return path_survives(sc, ps, s);
 }
 
 #if CLP_INTEGRATOR == CLP_INTEGRATOR_PATH

@@ -204,7 +204,8 @@ kernel void wf_shade(CLP_SCENE_PARAMS constant const FrameParams* fp, global flo
      * emission's weight (the light BVH's walk, CLP_LIGHT_BVH). */
     ps.L = paths[CLP_WF_ROW_L * capacity + slot].xyz;
     ps.beta = paths[CLP_WF_ROW_BETA * capacity + slot].xyz;
-    const int scatters = path_roulette_weighted(&sc, &ps, &s, w);
+    path_add_emission(&ps, &s, w);
+    const int scatters = path_survives(&sc, &ps, &s);
     wf_store_L(paths, capacity, slot, &ps);
     if (!scatters) return;
     wf_rng_state(paths, capacity, slot)[0] = ps.rng.state;
