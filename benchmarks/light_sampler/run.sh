@@ -8,7 +8,7 @@
 # reports the median.
 #   room-lamp-sky     a lamp in a closed room under a bright sky
 #   city:10000        2 x 10^4 small emissive triangles (many lights)
-#   glass-in-glass    the bundled scene Auto moves to the light BVH (a lamp and a sky)
+#   glass-in-glass    a lamp sealed in glass under a sky: no pick helps (Auto keeps power; the light BVH forced)
 #   cornell-classic   one lamp: Auto keeps power; the light BVH forced, to see what it costs there
 # References: clpath with the light BVH forced, 32768 spp at 64x48 (64x64 for
 # cornell-classic), made into REFS on first use (an unbiased estimator the

@@ -71,7 +71,7 @@ struct RenderOptions {
     bool quiet = false;
     std::string accel = "bvh";
     std::string kernel = "auto";
-    std::string light_sampler = "auto";
+    std::optional<std::string> light_sampler;
     std::uint32_t chunk_samples = 0;
     double checkpoint_seconds = 0;
     std::string checkpoint_file, resume;
@@ -194,7 +194,7 @@ int run_render(const RenderOptions& o) {
     settings.bvh.bins = o.bins;
     settings.accel = parse_accel(o.accel);
     settings.kernel_shape = parse_kernel_shape(o.kernel);
-    settings.light_sampler = parse_light_sampler(o.light_sampler);
+    if (o.light_sampler) settings.light_sampler = parse_light_sampler(*o.light_sampler);
     if (o.width) scene.camera.width = o.width;
     if (o.height) scene.camera.height = o.height;
     std::vector<std::string> outputs = o.outputs;
@@ -513,10 +513,9 @@ Command add_render_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--light-sampler", o->light_sampler,
                     "Next-event estimation's pick of a light: power (alias table), bvh (the light BVH: by each "
-                    "light's estimated contribution at the point), auto (bvh for many lights or lights beside an "
-                    "environment, else power)")
-        ->check(CLI::IsMember(light_sampler_names()))
-        ->capture_default_str();
+                    "light's estimated contribution at the point), auto (bvh for 16 or more finite lights "
+                    "spread over the scene, else power; default: the scene file's, else auto)")
+        ->check(CLI::IsMember(light_sampler_names()));
     cmd->add_option("--kernel", o->kernel,
                     "Kernel shape: auto (the one measured faster on the device's kind: mega today), mega (one kernel per path) "
                     "or wavefront (small kernels over queues of paths; path and path-bsdf only)")

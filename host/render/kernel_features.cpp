@@ -1,5 +1,6 @@
 #include "render/kernel_features.hpp"
 
+#include <cmath>
 #include <cstdlib>
 
 #include "util/error.hpp"
@@ -37,11 +38,29 @@ SceneFeatures scene_features(const Scene& scene) {
     f.normals = !scene.normals.empty();
     for (const auto& mesh : scene.meshes) f.normals = f.normals || !mesh.normals.empty();
     f.instances = !scene.instances.empty();
-    std::size_t finite = 0, infinite = f.environment ? 1 : 0;
-    for (std::size_t t = 0; t < scene.triangle_material.size(); ++t)
-        finite += emits(scene.materials[scene.triangle_material[t]]) ? 1 : 0;
-    for (const auto& l : scene.lights) (l.type == PunctualLight::Type::Directional ? infinite : finite) += 1;
-    f.many_lights = finite >= kManyFiniteLights || (finite > 0 && infinite > 0);
+    // The finite lights (emissive triangles, point and spot lights): how
+    // many, and the box around them against the scene's.
+    std::size_t finite = 0;
+    glm::vec3 lo(INFINITY), hi(-INFINITY), slo(INFINITY), shi(-INFINITY);
+    auto grow = [](glm::vec3& a, glm::vec3& b, glm::vec3 p) {
+        a = glm::min(a, p);
+        b = glm::max(b, p);
+    };
+    for (std::size_t t = 0; t < scene.triangle_material.size(); ++t) {
+        const bool lit = emits(scene.materials[scene.triangle_material[t]]);
+        finite += lit ? 1 : 0;
+        for (int c = 0; c < 3; ++c) {
+            grow(slo, shi, scene.vertices[3 * t + std::size_t(c)]);
+            if (lit) grow(lo, hi, scene.vertices[3 * t + std::size_t(c)]);
+        }
+    }
+    for (const auto& l : scene.lights)
+        if (l.type != PunctualLight::Type::Directional) {
+            ++finite;
+            grow(lo, hi, l.position);
+            grow(slo, shi, l.position);
+        }
+    f.many_lights = finite >= kManyFiniteLights && glm::length(hi - lo) >= kManyLightsSpread * glm::length(shi - slo);
     f.attributes = (scene.uvs.empty() ? 0u : CLP_SCENE_UVS) | (scene.tangents.empty() ? 0u : CLP_SCENE_TANGENTS) |
                    (scene.colors.empty() ? 0u : CLP_SCENE_COLORS);
     return f;

@@ -47,15 +47,21 @@ struct SceneFeatures {
     bool clearcoat = false, transmission = false;  // glTF layers (KHR_materials_clearcoat, _transmission)
     bool instances = false;  // some mesh is placed by instances (Scene::instances)
     // Lights that power alone picks badly: at least kManyFiniteLights finite
-    // lights (emissive triangles, point and spot lights), or finite lights
-    // beside an infinite one (an environment, a directional light), where
-    // power gives the small finite ones a tiny share. LightSampler::Auto then
-    // picks by the light BVH.
+    // lights (emissive triangles, point and spot lights; the triangles of the
+    // flat arrays: emitters are never instanced) spread over a box at least
+    // kManyLightsSpread of the scene's diagonal, so that they differ in
+    // distance and direction as seen from the points they light (a small
+    // emissive sphere of 80 triangles is one lamp to most of the scene).
+    // LightSampler::Auto then picks by the light BVH. Finite lights beside an
+    // environment are not enough: the light BVH gives the environment a fixed
+    // share, better where it is unseen (a closed room), worse where it lights
+    // the scene (benchmarks/results/pocl-epyc-2core/light-sampler, docs/light-bvh.md).
     bool many_lights = false;
     std::uint32_t attributes = 0;  // CLP_SCENE_UVS, _TANGENTS, _COLORS: the per-triangle attributes it has
 };
 SceneFeatures scene_features(const Scene& scene);
 constexpr std::size_t kManyFiniteLights = 16;
+constexpr float kManyLightsSpread = 1.0f / 16;
 
 // Whether a render of a scene with these features picks lights by the light
 // BVH: the path integrator with lights, and LightSampler::Bvh, or Auto (or

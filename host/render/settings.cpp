@@ -20,11 +20,6 @@ KernelShape parse_kernel_shape(const std::string& name) {
 
 const char* kernel_shape_name(KernelShape shape) { return kernel_shape_names().at(std::size_t(shape)).c_str(); }
 
-const std::vector<std::string>& light_sampler_names() {
-    static const std::vector<std::string> names{"auto", "power", "bvh"};  // LightSampler
-    return names;
-}
-
 LightSampler parse_light_sampler(const std::string& name) {
     const auto& names = light_sampler_names();
     for (std::size_t i = 0; i < names.size(); ++i)
@@ -71,6 +66,7 @@ RenderSettings settings_from_scene(const SceneRenderDefaults& d) {
     s.max_depth = d.max_depth;
     s.seed = d.seed;
     s.ao_distance = d.ao_distance;
+    s.light_sampler = parse_light_sampler(d.light_sampler);
     return s;
 }
 

@@ -33,14 +33,13 @@ const std::vector<std::string>& kernel_shape_names();    // "auto", "mega", "wav
 // How next-event estimation picks a light: in proportion to power (an alias
 // table), or by the light BVH's estimate of each light's contribution at the
 // shading point (render/light_bvh.hpp). Auto takes the light BVH for scenes
-// with many lights, or with finite lights beside an infinite one
-// (SceneFeatures::many_lights), and power otherwise; under Auto the
+// with many finite lights spread over the scene (SceneFeatures::many_lights),
+// and power otherwise; under Auto the
 // environment variable CLPATH_LIGHT_SAMPLER=power|bvh replaces that choice
 // (the test suite runs its agreement tests again with bvh).
 enum class LightSampler : std::uint32_t { Auto, Power, Bvh };
 LightSampler parse_light_sampler(const std::string& name);  // clpath::Error naming the choices
-const char* light_sampler_name(LightSampler sampler);
-const std::vector<std::string>& light_sampler_names();    // "auto", "power", "bvh"
+const char* light_sampler_name(LightSampler sampler);  // light_sampler_names() (scene/render_names.hpp) lists them
 
 struct RenderSettings {
     std::uint32_t integrator = CLP_INTEGRATOR_PATH;

@@ -41,4 +41,9 @@ const char* integrator_name(std::uint32_t i) { return integrator_names().at(i).c
 const char* rr_rule_name(std::uint32_t r) { return rr_rule_names().at(r).c_str(); }
 const char* hemisphere_name(std::uint32_t h) { return hemisphere_names().at(h).c_str(); }
 
+const std::vector<std::string>& light_sampler_names() {
+    static const std::vector<std::string> names{"auto", "power", "bvh"};
+    return names;
+}
+
 }  // namespace clpath

@@ -26,5 +26,7 @@ const char* hemisphere_name(std::uint32_t hemisphere);
 const std::vector<std::string>& integrator_names();  // "path", "path-bsdf", "ao", ...
 const std::vector<std::string>& rr_rule_names();     // "none", "throughput", "depth"
 const std::vector<std::string>& hemisphere_names();  // "cosine", "uniform"
+// The light samplers (render/settings.hpp LightSampler, in this order).
+const std::vector<std::string>& light_sampler_names();  // "auto", "power", "bvh"
 
 }  // namespace clpath

@@ -67,6 +67,7 @@ struct SceneRenderDefaults {
     std::uint32_t seed = 0;
     float ao_distance = 0;                        // 0: a tenth of the scene's bounding-box diagonal
     double noise_target = 0;                      // adaptive sampling's target (render/adaptive.hpp); 0: off
+    std::string light_sampler = "auto";           // auto | power | bvh (render/settings.hpp LightSampler)
 };
 
 // A decoded texture image with the addressing its file asks for. 8-bit files

@@ -42,30 +42,34 @@ RenderSettings sampler(LightSampler l, std::uint32_t max_depth = 6) {
     return s;
 }
 
-TEST(LightSampler, AutoTakesTheLightBvhWhereLightsAreManyOrBesideAnInfiniteOne) {
+TEST(LightSampler, AutoTakesTheLightBvhWhereManyLightsAreSpreadOut) {
     const SceneFeatures cornell = scene_features(scene_file("scenes/cornell-classic.json", 8, 8));
-    const SceneFeatures room = scene_features(scene_file("scenes/room-lamp-sky.json", 8, 8));
+    const Scene room_scene = scene_file("scenes/room-lamp-sky.json", 8, 8);
+    const SceneFeatures room = scene_features(room_scene);
+    const SceneFeatures glass = scene_features(scene_file("scenes/hard/glass-in-glass.json", 8, 8));
     const SceneFeatures city = scene_features(night_city_scene(8));  // 16 emissive triangles
     const SceneFeatures one_lamp = scene_features(night_city_scene(7));
-    EXPECT_FALSE(cornell.many_lights);  // one quad lamp, no sky
-    EXPECT_TRUE(room.many_lights);      // a lamp under a sky
+    EXPECT_FALSE(cornell.many_lights);  // one quad lamp
+    EXPECT_FALSE(room.many_lights);     // one lamp beside a sky: the scene file asks for the light BVH instead
+    EXPECT_FALSE(glass.many_lights);    // 80 triangles of one small sphere
     EXPECT_TRUE(city.many_lights);
     EXPECT_FALSE(one_lamp.many_lights);  // 14 triangles, below kManyFiniteLights
+    EXPECT_EQ(settings_from_scene(room_scene.render).light_sampler, LightSampler::Bvh);
     const RenderSettings autos = sampler(LightSampler::Auto);
     EXPECT_FALSE(uses_light_bvh(cornell, autos));
-    EXPECT_TRUE(uses_light_bvh(room, autos));
+    EXPECT_TRUE(uses_light_bvh(city, autos));
     EXPECT_TRUE(uses_light_bvh(cornell, sampler(LightSampler::Bvh)));
     EXPECT_FALSE(uses_light_bvh(room, sampler(LightSampler::Power)));
     RenderSettings ao = sampler(LightSampler::Bvh);
     ao.integrator = CLP_INTEGRATOR_AO;  // no light sampling at all
     EXPECT_FALSE(uses_light_bvh(room, ao));
-    EXPECT_NE(build_options(kernel_features(room, autos)).find(" -DCLP_LIGHT_BVH"), std::string::npos);
+    EXPECT_NE(build_options(kernel_features(city, autos)).find(" -DCLP_LIGHT_BVH"), std::string::npos);
     EXPECT_EQ(build_options(kernel_features(cornell, autos)).find("CLP_LIGHT_BVH"), std::string::npos);
     // A choice of estimator: --all-features compiles it in only where it is chosen.
     RenderSettings all = autos;
     all.all_features = true;
     EXPECT_FALSE(kernel_features(cornell, all).light_bvh);
-    EXPECT_TRUE(kernel_features(room, all).light_bvh);
+    EXPECT_TRUE(kernel_features(city, all).light_bvh);
     try {
         parse_light_sampler("tree");
         FAIL() << "an unknown sampler was accepted";

@@ -96,6 +96,12 @@ void read_render(Object o, SceneRenderDefaults& r) {
     };
     if (auto v = o.get("russian_roulette")) r.russian_roulette = name(*v, parse_rr_rule);
     if (auto v = o.get("integrator")) r.integrator = name(*v, parse_integrator);
+    if (auto v = o.get("light_sampler"))
+        r.light_sampler = name(*v, [](const std::string& s) {
+            const auto& names = light_sampler_names();
+            if (std::find(names.begin(), names.end(), s) == names.end())
+                throw Error("unknown light sampler '" + s + "' (choose one of: auto, power, bvh)");
+        });
     o.finish();
 }
 
