@@ -33,7 +33,7 @@ clpath_cli_test(bench.convergence_missing_reference FAIL
                 OUTPUT "--reference: File does not exist: .*/no-such-reference\\.exr")
 clpath_cli_test(bench.convergence_unknown_config FAIL
                 ARGS bench convergence ${CLASSIC} --reference ${CLASSIC} --configs thesis,magic
-                OUTPUT "--configs: magic not in \\{thesis,cosine,no-rr,throughput-rr,nee-mis,bvh,clpath\\}")
+                OUTPUT "--configs: magic not in \\{thesis,cosine,no-rr,throughput-rr,nee-mis,bvh,clpath,lights-power,lights-bvh\\}")
 clpath_cli_test(bench.convergence_zero_spp FAIL
                 ARGS bench convergence ${CLASSIC} --reference ${CLASSIC} --max-spp 0
                 OUTPUT "--max-spp: '0' is not a whole number from 1 to 2147483648")

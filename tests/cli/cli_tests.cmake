@@ -25,7 +25,7 @@ clpath_cli_test(unknown_output_format FAIL ARGS render --spp 1 -o ${CLI_OUT}/x.b
                 OUTPUT "output .*/x\\.bmp: unknown image format '\\.bmp' \\(use \\.png, \\.exr or \\.pfm\\)"
                 FORBID ${CLI_OUT}/x.bmp)
 clpath_cli_test(unknown_scene FAIL ARGS render no-such-scene --spp 1 -o ${CLI_OUT}/unknown-scene.pfm
-                OUTPUT "no built-in scene named 'no-such-scene' \\(built-in: cornell scaling:N room:N bunnies:N\\)"
+                OUTPUT "no built-in scene named 'no-such-scene' \\(built-in: cornell scaling:N room:N bunnies:N city:N\\)"
                 FORBID ${CLI_OUT}/unknown-scene.pfm)
 clpath_cli_test(bad_spp_text FAIL ARGS render --spp many OUTPUT "--spp: 'many' is not a whole number from 1 to 4294967295")
 # Beyond the 32-bit sample index the kernels use (host/render/renderer.hpp kMaxSamplesPerPixel).
@@ -181,10 +181,19 @@ clpath_cli_test(adaptive_odd_chunk FAIL ARGS render --noise-target 0.1 --chunk 3
                 OUTPUT "--noise-target: adaptive sampling needs chunks of an even number of samples \\(--chunk 3 is odd\\)"
                 FORBID ${CLI_OUT}/adaptive-odd.pfm)
 
+# --- light samplers: a scene file's choice, Auto's, and the command line's over both
+clpath_cli_test(render_light_sampler_from_scene ARGS render ${CMAKE_SOURCE_DIR}/scenes/room-lamp-sky.json --spp 1
+                --width 16 --height 12 -o ${CLI_OUT}/room-lamp-sky.pfm
+                OUTPUT "summary: .* light_sampler=bvh light_bvh_nodes=3 light_bvh_depth=1 ")
+clpath_cli_test(render_light_sampler_auto_city ARGS render city:100 --spp 1 --width 16 --height 12 -o ${CLI_OUT}/city.pfm
+                OUTPUT "summary: .* light_sampler=bvh light_bvh_nodes=399 ")
+clpath_cli_test(render_light_sampler_forced_power ARGS render city:100 --light-sampler power --spp 1 --width 16 --height 12
+                -o ${CLI_OUT}/city-power.pfm OUTPUT "summary: .* light_sampler=power")
+
 # --- instancing: 10,000 bunnies (7 10^8 triangles placed) render in under 10 MB of scene buffers
 clpath_cli_test(render_bunnies_10000 ARGS render bunnies:10000 --spp 1 --width 32 --height 18
                 -o ${CLI_OUT}/bunnies.pfm
-                OUTPUT "summary: .*triangles=696660002 .*nonfinite=0 .*scene_device_bytes=[1-9][0-9][0-9][0-9][0-9][0-9][0-9] instances=10001 instanced_meshes=2 placed_triangles=696660002 tlas_bytes=")
+                OUTPUT "summary: .*triangles=696660002 .*nonfinite=0 .*scene_device_bytes=[1-9][0-9][0-9][0-9][0-9][0-9][0-9] light_sampler=power instances=10001 instanced_meshes=2 placed_triangles=696660002 tlas_bytes=")
 # bench instances: the two-level walk's answers are the one-level walk's over
 # the flattened scene, and robust Embree's over the instances, on every ray
 # (both watertight), but for hits within kNearOrigin of a ray's origin,

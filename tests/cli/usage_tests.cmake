@@ -36,7 +36,7 @@ clpath_usage_test(help_is_not_an_error RC 0 ARGS render --help OUTPUT "--tonemap
 foreach(cmd view export bench_rays bench_build bench_convergence)
     string(REPLACE "_" ";" words ${cmd})
     clpath_usage_test(${cmd}_help_names_scene_kinds RC 0 ARGS ${words} --help
-                      OUTPUT "glTF model \\(\\.gltf, \\.glb\\) or built-in scene \\(cornell, scaling:N, room:N, bunnies:N\\)")
+                      OUTPUT "glTF model \\(\\.gltf, \\.glb\\) or built-in scene \\(cornell, scaling:N, room:N, bunnies:N, city:N\\)")
 endforeach()
 
 # --- numbers: non-finite, negative, out of range ---------------------------------------------
@@ -60,6 +60,7 @@ clpath_usage_test(ao_distance_nan RC 2 ARGS render --ao-distance nan OUTPUT "^cl
 clpath_usage_test(leaf_size_zero RC 2 ARGS render --leaf-size 0 OUTPUT "^clpath: error: --leaf-size: '0' is not a whole number from 1 to 64")
 clpath_usage_test(exposure_out_of_range RC 2 ARGS render --exposure 30 OUTPUT "^clpath: error: --exposure: '30' is not a finite number from -20 to 20")
 clpath_usage_test(exposure_nan RC 2 ARGS render --exposure nan OUTPUT "^clpath: error: --exposure: 'nan' is not a finite number from -20 to 20")
+clpath_usage_test(light_sampler_unknown RC 2 ARGS render --light-sampler tree OUTPUT "^clpath: error: --light-sampler: tree not in \\{auto,power,bvh\\}")
 clpath_usage_test(tonemap_unknown RC 2 ARGS render --tonemap filmic OUTPUT "^clpath: error: --tonemap: filmic not in \\{clamp,reinhard,aces\\}")
 clpath_usage_test(export_width_negative RC 2 ARGS export cornell ${USAGE_OUT}/width-negative.json --width -3 OUTPUT "^clpath: error: --width: '-3' is not a whole number from 1 to 16384")
 clpath_usage_test(compare_clamp_inf RC 2 ARGS compare ${CLI_DATA}/yz-plate.obj ${CLI_DATA}/yz-plate.obj --clamp inf

@@ -62,7 +62,8 @@ TEST(SceneFile, ReadsEveryField) {
     const std::string text = R"({
       "name": "everything", "description": "all fields",
       "camera": {"eye": [1, 2, 3], "target": [1, 3, 3], "up": [0, 0, 1], "vfov": 30, "resolution": [320, 200]},
-      "render": {"spp": 9, "max_depth": 3, "russian_roulette": "depth", "integrator": "ao", "seed": 7, "ao_distance": 0.5},
+      "render": {"spp": 9, "max_depth": 3, "russian_roulette": "depth", "integrator": "ao", "seed": 7, "ao_distance": 0.5,
+                 "light_sampler": "bvh"},
       "materials": {
         "d": {"type": "diffuse", "color": [0.1, 0.2, 0.3], "emission": [1, 2, 3], "two_sided": true},
         "e": {"type": "emitter", "radiance": 2, "strength": 10, "albedo": 0.5},
@@ -95,6 +96,7 @@ TEST(SceneFile, ReadsEveryField) {
     EXPECT_EQ(s.render.integrator, "ao");
     EXPECT_EQ(s.render.seed, 7u);
     EXPECT_FLOAT_EQ(s.render.ao_distance, 0.5f);
+    EXPECT_EQ(s.render.light_sampler, "bvh");
 
     ASSERT_EQ(s.materials.size(), 5u);
     EXPECT_FLOAT_EQ(s.materials[0].albedo[2], 0.3f);
@@ -335,6 +337,8 @@ TEST(SceneFileBad, OutOfRangeValues) {
     EXPECT_EQ(parse_error(scene_with(kPlane, R"("render": {"integrator": "magic"})")),
               "scenes/s.json: render.integrator: unknown integrator 'magic' (choose one of: path, path-bsdf, ao, "
               "normals, depth, albedo, heatmap)");
+    EXPECT_EQ(parse_error(scene_with(kPlane, R"("render": {"light_sampler": "tree"})")),
+              "scenes/s.json: render.light_sampler: unknown light sampler 'tree' (choose one of: auto, power, bvh)");
     EXPECT_NE(parse_error(scene_with(kPlane, R"("render": {"russian_roulette": "sometimes"})"))
                   .find("scenes/s.json: render.russian_roulette: unknown Russian roulette rule 'sometimes'"),
               std::string::npos);
