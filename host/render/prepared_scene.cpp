@@ -202,9 +202,12 @@ std::shared_ptr<const PreparedScene> prepare_scene(const Scene& scene, const Ren
         p->material_ext.assign(scene.materials.begin(), scene.materials.end());
     p->lights = std::move(lights.lights);
     p->light_alias = std::move(lights.alias);
-    // Built beside the alias table unless only power is to pick (it is small:
-    // 72 bytes a light), so that a render may switch integrators or sampler.
-    if (settings.light_sampler != LightSampler::Power && !p->lights.empty()) {
+    // Built where the settings pick lights by it with the path integrator
+    // (the light table too is built whatever the integrator, so switching
+    // integrators rebuilds nothing); 72 bytes a light, never uploaded unused.
+    RenderSettings path_settings = settings;
+    path_settings.integrator = CLP_INTEGRATOR_PATH;
+    if (uses_light_bvh(sum.features, path_settings) && !p->lights.empty()) {
         const auto t0 = std::chrono::steady_clock::now();
         p->light_bvh = build_light_bvh(p->lights);
         LightBvhSummary& lb = sum.light_bvh;

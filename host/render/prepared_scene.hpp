@@ -73,7 +73,7 @@ struct PreparedScene {
     std::vector<glm::vec3> normals;  // empty, or three per scene triangle
     std::vector<Light> lights;
     std::vector<AliasEntry> light_alias;  // parallel to lights
-    // Built unless the settings pick lights by power alone (summary.light_bvh.built).
+    // Built where the settings pick lights by it (summary.light_bvh.built).
     LightBvh light_bvh;
     EnvironmentMap environment;
     SurfaceBuffers surface;  // texture coordinates, tangents, colours and textures
