@@ -382,9 +382,10 @@ int run_render(const RenderOptions& o) {
                       is.bottom_bytes, is.bottom_build_ms);
         instance_summary = buf;
     }
-    // The light sampler that ran, and the light BVH it walked.
+    // The light sampler that ran, and the light BVH it walked: the scene was
+    // prepared with the tree exactly where the path integrator picks by it.
     std::string light_summary;
-    if (uses_light_bvh(scene_features(scene), settings)) {
+    if (settings.integrator == CLP_INTEGRATOR_PATH && result.light_bvh.built) {
         char buf[160];
         std::snprintf(buf, sizeof buf, " light_sampler=bvh light_bvh_nodes=%u light_bvh_depth=%d light_bvh_build_ms=%.2f",
                       result.light_bvh.node_count, result.light_bvh.depth, result.light_bvh.build_ms);
