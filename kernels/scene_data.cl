@@ -151,7 +151,8 @@ CLP_GPU_INLINE void surface_at(Surface* out, const SceneData* sc, const Hit* h, 
     }
 #endif
 #ifdef CLP_SURFACE_PARAMS
-    surface_params(&sc->sd, s.m, mi, s.tv, h->b1, h->b2, &s.ns, &s.mat surface_layers_arg(&s));
+    surface_params(&sc->sd, s.m, mi, s.tv, h->b1, h->b2, &s.ns, &s.mat surface_layers_arg(&s)
+                   CLP_INST_ARG((global const float4*)&sc->nodes[h->inst]));
 #endif
     *out = s;
 }

@@ -9,20 +9,44 @@
 
 #include "textures.cl"
 #include "materials.cl"
+#include "traverse.cl"
 
 #ifdef CLP_SURFACE_PARAMS
+
+/* With instances, the hit's instance record (traverse_instances.cl): the
+ * attributes are the object's, and its tangents move to world space with it. */
+#ifdef CLP_HAS_INSTANCES
+#define CLP_INST_PARAM , global const float4* im
+#define CLP_INST_ARG(x) , x
+#else
+#define CLP_INST_PARAM
+#define CLP_INST_ARG(x)
+#endif
 
 #ifdef CLP_HAS_TEXTURES
 /* The tangent frame's tangent and bitangent sign at a hit: from the mesh's
  * tangents when it has them, else derived from how the texture coordinates
  * run across the triangle (constant per triangle). glTF's convention:
  * bitangent = cross(normal, tangent) * sign points along -v (v runs down the image). */
-static inline float4 surface_tangent(const SurfaceData* sd, global const TriVerts* tv, float b1, float b2) {
+static inline float4 surface_tangent(const SurfaceData* sd, global const TriVerts* tv, float b1, float b2 CLP_INST_PARAM) {
     uint prim = tv->prim;
+#ifdef CLP_HAS_INSTANCES
+    const float handed = instance_handedness(im);
+#else
+    const float handed = 1.0f;
+#endif
     if (sd->flags & CLP_SCENE_TANGENTS) {
         global const float* a = surface_attrs(sd, prim) + surface_tangent_offset(sd);
-        float4 t = (1.0f - b1 - b2) * vload4(0, a) + b1 * vload4(1, a) + b2 * vload4(2, a);
-        if (dot(t.xyz, t.xyz) > 0.0f) return (float4)(t.xyz, vload4(0, a).w < 0.0f ? -1.0f : 1.0f);
+        float4 t0 = vload4(0, a), t1 = vload4(1, a), t2 = vload4(2, a);
+#ifdef CLP_HAS_INSTANCES
+        /* Each corner's tangent moved and made unit before the interpolation,
+         * as a flattened copy's are (normalising does not commute with it). */
+        t0.xyz = normalize3(instance_dir(im, t0.xyz));
+        t1.xyz = normalize3(instance_dir(im, t1.xyz));
+        t2.xyz = normalize3(instance_dir(im, t2.xyz));
+#endif
+        float4 t = (1.0f - b1 - b2) * t0 + b1 * t1 + b2 * t2;
+        if (dot(t.xyz, t.xyz) > 0.0f) return (float4)(t.xyz, (t0.w < 0.0f ? -1.0f : 1.0f) * handed);
     }
     if (!(sd->flags & CLP_SCENE_UVS)) return (float4)(0.0f);
     global const float* a = surface_attrs(sd, prim);
@@ -32,16 +56,18 @@ static inline float4 surface_tangent(const SurfaceData* sd, global const TriVert
     if (!(fabs(r) > 0.0f)) return (float4)(0.0f);
     float3 dpdu = (e1 * d2.y - e2 * d1.y) / r, dpdv = (e2 * d1.x - e1 * d2.x) / r;
     float3 n = cross(e1, e2);
-    return (float4)(dpdu, dot(cross(n, dpdu), dpdv) > 0.0f ? -1.0f : 1.0f);
+    float w = (dot(cross(n, dpdu), dpdv) > 0.0f ? -1.0f : 1.0f) * handed;
+#ifdef CLP_HAS_INSTANCES
+    dpdu = instance_dir(im, dpdu); /* object-space edges: dp/du moves with the instance */
+#endif
+    return (float4)(dpdu, w);
 }
 
 /* ns bent by the tangent-space normal map `tex`, its x and y scaled by `scale`. */
-static inline float3 normal_mapped(const SurfaceData* sd, int tex, float scale, global const TriVerts* tv, float b1,
-                            float b2, float2 uv, float3 ns) {
+static inline float3 normal_mapped(const SurfaceData* sd, int tex, float scale, float4 t, float2 uv, float3 ns) {
     float3 tn = texture_sample(sd, tex, uv, 0).xyz * 2.0f - 1.0f;
     tn.x *= scale;
     tn.y *= scale;
-    float4 t = surface_tangent(sd, tv, b1, b2);
     float3 T = t.xyz - ns * dot(ns, t.xyz);
     float len = length3(T);
     if (!(len > 0.0f) || !isfinite(len)) return ns;
@@ -53,12 +79,20 @@ static inline float3 normal_mapped(const SurfaceData* sd, int tex, float scale, 
 }
 #endif
 
+#ifdef CLP_HAS_TEXTURES
+#define CLP_TANGENT_PARAM , float4 tangent
+#define CLP_TANGENT_ARG , tangent
+#else
+#define CLP_TANGENT_PARAM
+#define CLP_TANGENT_ARG
+#endif
+
 #ifdef CLP_GLTF_LAYERS
 /* The glTF layers of material mi at a hit (ns: the interpolated normal, before
  * the base's normal map, which the coat does not share): factors times their
  * textures (weight R, roughness G, transmission R, all linear). */
 static inline void surface_layers(const SurfaceData* sd, global const Material* gm, uint mi, global const TriVerts* tv,
-                                  float b1, float b2, float3 ns, GltfLayers* out) {
+                                  float b1, float b2, float3 ns, GltfLayers* out CLP_TANGENT_PARAM) {
     out->coat_n = ns;
     out->clearcoat = 0.0f;
     out->coat_roughness = 0.0f;
@@ -74,7 +108,7 @@ static inline void surface_layers(const SurfaceData* sd, global const Material* 
         if (ct != CLP_NO_TEXTURE) c *= texture_sample(sd, ct, uv, 0).x;
         if (crt != CLP_NO_TEXTURE) cr *= texture_sample(sd, crt, uv, 0).y;
         if (tt != CLP_NO_TEXTURE) t *= texture_sample(sd, tt, uv, 0).x;
-        if (cnt != CLP_NO_TEXTURE && c > 0.0f) out->coat_n = normal_mapped(sd, cnt, ext->clearcoat_normal_scale, tv, b1, b2, uv, ns);
+        if (cnt != CLP_NO_TEXTURE && c > 0.0f) out->coat_n = normal_mapped(sd, cnt, ext->clearcoat_normal_scale, tangent, uv, ns);
     }
 #endif
     out->clearcoat = clamp(c, 0.0f, 1.0f);
@@ -91,19 +125,26 @@ static inline void surface_layers(const SurfaceData* sd, global const Material* 
 
 /* gm is material `mi` of the table (its MaterialExt has the same index). */
 static inline void surface_params(const SurfaceData* sd, global const Material* gm, uint mi, global const TriVerts* tv,
-                           float b1, float b2, float3* ns, Material* out CLP_LAYERS_OUT) {
+                                  float b1, float b2, float3* ns, Material* out CLP_LAYERS_OUT CLP_INST_PARAM) {
     *out = *gm;
+#ifdef CLP_HAS_TEXTURES
+    /* A kernel with every feature may render a scene whose materials map nothing: no records then. */
+    global const MaterialExt* ext = &sd->material_ext[mi];
+    const int ext_here = (sd->flags & CLP_SCENE_MATERIAL_EXT) != 0;
+    /* One tangent frame for both normal maps (the base's and the coat's). */
+    float4 tangent = (float4)(0.0f);
+    if (ext_here && (ext->texture[CLP_TEX_NORMAL] != CLP_NO_TEXTURE || ext->texture[CLP_TEX_CLEARCOAT_NORMAL] != CLP_NO_TEXTURE))
+        tangent = surface_tangent(sd, tv, b1, b2 CLP_INST_ARG(im));
+#endif
 #ifdef CLP_GLTF_LAYERS
-    surface_layers(sd, gm, mi, tv, b1, b2, *ns, layers);
+    surface_layers(sd, gm, mi, tv, b1, b2, *ns, layers CLP_TANGENT_ARG);
 #endif
     float3 base = CLP_M3(gm->albedo);
 #ifdef CLP_HAS_VERTEX_COLORS
     base *= surface_color(sd, tv->prim, b1, b2).xyz;
 #endif
 #ifdef CLP_HAS_TEXTURES
-    /* A kernel with every feature may render a scene whose materials map nothing: no records then. */
-    global const MaterialExt* ext = &sd->material_ext[mi];
-    int any = (sd->flags & CLP_SCENE_MATERIAL_EXT) &&
+    int any = ext_here &&
               (ext->texture[0] != CLP_NO_TEXTURE || ext->texture[1] != CLP_NO_TEXTURE ||
                ext->texture[2] != CLP_NO_TEXTURE || ext->texture[3] != CLP_NO_TEXTURE);
     if (any) {
@@ -124,7 +165,7 @@ static inline void surface_params(const SurfaceData* sd, global const Material* 
             out->emission[2] = e.z;
         }
         if (ext->texture[CLP_TEX_NORMAL] != CLP_NO_TEXTURE)
-            *ns = normal_mapped(sd, ext->texture[CLP_TEX_NORMAL], ext->normal_scale, tv, b1, b2, uv, *ns);
+            *ns = normal_mapped(sd, ext->texture[CLP_TEX_NORMAL], ext->normal_scale, tangent, uv, *ns);
     }
 #endif
     out->albedo[0] = base.x;

@@ -42,6 +42,21 @@ static inline float3 instance_normal(global const float4* im, float3 n) {
     return normalize3(n.x * im[3].xyz + n.y * im[4].xyz + n.z * im[5].xyz);
 }
 
+/* A direction on an instance's surface (a vertex tangent, dp/du) in world
+ * space: moved by the object-to-world map's linear part, rows 0-2 of im. */
+static inline float3 instance_dir(global const float4* im, float3 v) {
+    return xform_dir(im[0], im[1], im[2], v);
+}
+
+/* -1 for a mirroring instance (det M < 0), else 1: the sign its tangent
+ * frames' bitangents take in world space. The flattened copy's corners are
+ * swapped back, which turns dp/du x dp/dv against its normal, and a vertex
+ * tangent's bitangent is cross(n, t) w with n through the inverse
+ * transpose: both flip with det M's sign (scene.hpp, moved_tangent). */
+static inline float instance_handedness(global const float4* im) {
+    return dot(im[0].xyz, cross(im[1].xyz, im[2].xyz)) < 0.0f ? -1.0f : 1.0f;
+}
+
 /* The hit point of barycentrics b1, b2 on the object-space triangle v0 v1 v2
  * of instance im, in world space, with its error bound. The vertices are
  * moved to world space first, so the point is interpolated exactly as on a

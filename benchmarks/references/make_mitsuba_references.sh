@@ -39,6 +39,7 @@ scenes=(
   "gltf-normal-map        benchmarks/references/scenes/gltf-normal-map.json 64 48"
   "gltf-clearcoat         benchmarks/references/scenes/gltf-clearcoat.json 64 48"
   "gltf-transmission      benchmarks/references/scenes/gltf-transmission.json 64 48"
+  "gltf-instances         benchmarks/references/scenes/gltf-instances.json 64 48"
   "suzanne                scenes/suzanne/Suzanne.gltf                      64 48"
   "textured               scenes/textured/textured.json                    64 48"
   "room-lamp-sky          scenes/room-lamp-sky.json                        64 48"

@@ -31,7 +31,7 @@ SceneFeatures scene_features(const Scene& scene) {
             f.transmission = f.transmission || m.transmission > 0;
         }
     }
-    f.vertex_colors = !scene.colors.empty();
+    f.vertex_colors = (scene.attribute_flags() & CLP_SCENE_COLORS) != 0;
     f.lights = !scene.lights.empty();
     f.environment = scene.environment.emits();
     f.environment_map = f.environment && !scene.environment.image.empty();
@@ -61,8 +61,7 @@ SceneFeatures scene_features(const Scene& scene) {
             grow(slo, shi, l.position);
         }
     f.many_lights = finite >= kManyFiniteLights && glm::length(hi - lo) >= kManyLightsSpread * glm::length(shi - slo);
-    f.attributes = (scene.uvs.empty() ? 0u : CLP_SCENE_UVS) | (scene.tangents.empty() ? 0u : CLP_SCENE_TANGENTS) |
-                   (scene.colors.empty() ? 0u : CLP_SCENE_COLORS);
+    f.attributes = scene.attribute_flags();
     return f;
 }
 

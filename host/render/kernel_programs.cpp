@@ -260,14 +260,22 @@ std::vector<ProgramSpec> covering_programs(const std::vector<NamedSceneFeatures>
         list.add_wavefront(n + "-flat-all", all_opaque, s, "wavefront " + n + ", flat object list, every feature");
     }
     // Instances change the walk and the surface (the two-level BVH,
-    // CLP_HAS_INSTANCES): over diffuse, in both shapes. Not a scene switch of
-    // the programs above: it follows the scene even with every feature
-    // compiled in (the node buffer's layout), and the flat list has none.
+    // CLP_HAS_INSTANCES): over diffuse, and with every feature (an instanced
+    // mesh's tangent frames move with it: surface_params.cl), in both
+    // shapes. Not a scene switch of the programs above: it follows the scene
+    // even with every feature compiled in (the node buffer's layout), and the
+    // flat list has none.
     {
         SceneFeatures inst = diffuse_only();
         inst.instances = true;
         list.add_render("path-diffuse-instances", inst, defaults, "diffuse, meshes placed by instances");
         list.add_wavefront("path-diffuse-instances", inst, defaults, "wavefront path, diffuse, instances");
+        SceneFeatures inst_all = all_layers;
+        inst_all.instances = true;
+        RenderSettings s = defaults;
+        s.all_features = true;
+        list.add_render("path-all-instances", inst_all, s, "every feature, the glTF layers and instances");
+        list.add_wavefront("path-all-instances", inst_all, s, "wavefront path, every feature, the glTF layers and instances");
     }
     for (Accel a : {Accel::Bvh, Accel::Flat}) list.add(ray_batch_program(a, code), "bench rays");
     list.add(ray_batch_program(Accel::Bvh, code, true), "bench instances");

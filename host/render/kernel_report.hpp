@@ -50,7 +50,8 @@ struct KernelBudget {
     const char* target;
     int max_registers;
     int max_stack_bytes;
-    const char* with_option;     // applies only to programs built with this option (nullptr: any)
+    const char* with_option;     // applies only to programs built with these options (space-separated; nullptr: any),
+                                 // and then in place of the entries for any program
     const char* without_option;  // applies only to programs built without it (nullptr: any)
     // A kernel not yet within its budget is held at the figures it has today:
     // between the budget and these it is reported as an open shortfall (every

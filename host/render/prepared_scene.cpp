@@ -16,15 +16,15 @@ void validate_instances(const Scene& s) {
         const std::string what = "scene '" + s.name + "': instanced mesh '" + m.name + "'";
         if (m.triangle_count() == 0 || m.vertices.size() != 3 * m.triangle_count())
             throw Error("internal: " + what + " has no triangles or not three vertices each");
-        if (!m.normals.empty() && m.normals.size() != m.vertices.size())
-            throw Error("internal: " + what + " has normals for some vertices only");
+        if ((!m.normals.empty() && m.normals.size() != m.vertices.size()) ||
+            (!m.uvs.empty() && m.uvs.size() != m.vertices.size()) ||
+            (!m.tangents.empty() && m.tangents.size() != m.vertices.size()) ||
+            (!m.colors.empty() && m.colors.size() != m.vertices.size()))
+            throw Error("internal: " + what + " has normals, texture coordinates, tangents or colours for some vertices only");
         for (auto mi : m.triangle_material) {
             if (mi >= s.materials.size()) throw Error("internal: " + what + ": material index out of range");
-            // The light table holds flattened emitters only; texture maps
-            // would need the object-space tangent frame moved too.
+            // The light table holds flattened emitters only.
             if (emits(s.materials[mi])) throw Error("internal: " + what + " emits: emissive meshes are placed flattened");
-            for (int t : s.materials[mi].texture)
-                if (t != CLP_NO_TEXTURE) throw Error(what + ": a textured mesh cannot be instanced yet");
         }
     }
     for (std::size_t i = 0; i < s.instances.size(); ++i)
@@ -83,7 +83,8 @@ float bounding_diagonal(const Scene& s) {
 
 // The two-level structure of an instanced scene: the flat triangles (if
 // any) as one mesh under the identity, then the scene's meshes; each mesh's
-// per-triangle data (materials, normals, attributes) after the flat ones.
+// per-triangle data (materials, normals) after the flat ones, as its
+// attributes are (pack_surface_buffers).
 void prepare_instanced(const Scene& scene, const RenderSettings& settings, const std::vector<std::uint32_t>& light_of,
                        PreparedScene& p) {
     if (settings.accel != Accel::Bvh)
@@ -114,15 +115,6 @@ void prepare_instanced(const Scene& scene, const RenderSettings& settings, const
             if (m.normals.empty()) p.normals.resize(p.normals.size() + m.vertices.size(), glm::vec3(0));
             else p.normals.insert(p.normals.end(), m.normals.begin(), m.normals.end());
         }
-    }
-    if (p.surface.attr_stride > 0) {  // the meshes carry no attributes: no uv, derived tangents, white
-        std::vector<float> none;
-        if (!scene.uvs.empty()) none.insert(none.end(), 6, 0.0f);
-        if (!scene.tangents.empty()) none.insert(none.end(), 12, 0.0f);
-        if (!scene.colors.empty()) none.insert(none.end(), 12, 1.0f);
-        for (const auto& m : scene.meshes)
-            for (std::size_t t = 0; t < m.triangle_count(); ++t)
-                p.surface.attrs.insert(p.surface.attrs.end(), none.begin(), none.end());
     }
 }
 

@@ -6,13 +6,33 @@
 
 namespace clpath {
 namespace {
-std::uint32_t stride_of(const Scene& s, std::uint32_t* flags) {
-    std::uint32_t stride = 0, f = 0;
-    if (!s.uvs.empty()) stride += 6, f |= CLP_SCENE_UVS;
-    if (!s.tangents.empty()) stride += 12, f |= CLP_SCENE_TANGENTS;
-    if (!s.colors.empty()) stride += 12, f |= CLP_SCENE_COLORS;
-    if (flags) *flags = f;
-    return stride;
+std::uint32_t stride_of(std::uint32_t flags) {
+    return ((flags & CLP_SCENE_UVS) ? 6u : 0u) + ((flags & CLP_SCENE_TANGENTS) ? 12u : 0u) +
+           ((flags & CLP_SCENE_COLORS) ? 12u : 0u);
+}
+// The records of `triangles` triangles in the layout `flags` names, from
+// attributes each empty (the default then: no uv, a tangent to derive, white)
+// or three per triangle.
+void append_attributes(std::vector<float>& out, std::uint32_t flags, std::size_t triangles,
+                       const std::vector<glm::vec2>& uvs, const std::vector<glm::vec4>& tangents,
+                       const std::vector<glm::vec4>& colors) {
+    for (std::size_t t = 0; t < triangles; ++t) {
+        if (flags & CLP_SCENE_UVS)
+            for (std::size_t c = 3 * t; c < 3 * t + 3; ++c) {
+                const glm::vec2 v = uvs.empty() ? glm::vec2(0) : uvs[c];
+                out.insert(out.end(), {v.x, v.y});
+            }
+        if (flags & CLP_SCENE_TANGENTS)
+            for (std::size_t c = 3 * t; c < 3 * t + 3; ++c) {
+                const glm::vec4 v = tangents.empty() ? glm::vec4(0) : tangents[c];
+                out.insert(out.end(), {v.x, v.y, v.z, v.w});
+            }
+        if (flags & CLP_SCENE_COLORS)
+            for (std::size_t c = 3 * t; c < 3 * t + 3; ++c) {
+                const glm::vec4 v = colors.empty() ? glm::vec4(1) : colors[c];
+                out.insert(out.end(), {v.x, v.y, v.z, v.w});
+            }
+    }
 }
 std::size_t texel_words(const Texture& t) {
     return std::size_t(t.width) * std::size_t(t.height) * (t.is_float ? 4 : 1);
@@ -21,21 +41,15 @@ std::size_t texel_words(const Texture& t) {
 
 SurfaceBuffers pack_surface_buffers(const Scene& s) {
     SurfaceBuffers b;
-    b.attr_stride = stride_of(s, &b.scene_flags);
-    b.attrs.reserve(s.triangle_count() * b.attr_stride);
-    for (std::size_t t = 0; t < s.triangle_count(); ++t) {
-        if (!s.uvs.empty())
-            for (int c = 0; c < 3; ++c) b.attrs.insert(b.attrs.end(), {s.uvs[3 * t + c].x, s.uvs[3 * t + c].y});
-        if (!s.tangents.empty())
-            for (int c = 0; c < 3; ++c) {
-                const glm::vec4 v = s.tangents[3 * t + c];
-                b.attrs.insert(b.attrs.end(), {v.x, v.y, v.z, v.w});
-            }
-        if (!s.colors.empty())
-            for (int c = 0; c < 3; ++c) {
-                const glm::vec4 v = s.colors[3 * t + c];
-                b.attrs.insert(b.attrs.end(), {v.x, v.y, v.z, v.w});
-            }
+    b.scene_flags = s.attribute_flags();
+    b.attr_stride = stride_of(b.scene_flags);
+    if (b.attr_stride > 0) {
+        std::size_t triangles = s.triangle_count();
+        for (const auto& m : s.meshes) triangles += m.triangle_count();
+        b.attrs.reserve(triangles * b.attr_stride);
+        append_attributes(b.attrs, b.scene_flags, s.triangle_count(), s.uvs, s.tangents, s.colors);
+        for (const auto& m : s.meshes)
+            append_attributes(b.attrs, b.scene_flags, m.triangle_count(), m.uvs, m.tangents, m.colors);
     }
     std::size_t words = 0;
     for (const auto& t : s.textures) words += texel_words(t);

@@ -12,7 +12,7 @@
 namespace clpath {
 
 struct SurfaceBuffers {
-    std::vector<float> attrs;      // attr_stride floats per triangle, scene order
+    std::vector<float> attrs;      // attr_stride floats per triangle: the flat ones, then each instanced mesh's
     std::uint32_t attr_stride = 0;
     std::uint32_t scene_flags = 0;  // CLP_SCENE_UVS, _TANGENTS, _COLORS
     std::vector<TextureDesc> textures;

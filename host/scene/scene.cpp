@@ -99,6 +99,12 @@ Scene flatten_instances(const Scene& scene, std::size_t max_triangles) {
     bool normals = !s.normals.empty();
     for (const auto& in : scene.instances) normals = normals || !scene.meshes[in.mesh].normals.empty();
     if (normals) s.normals.resize(s.vertices.size(), glm::vec3(0));  // zero: none, shaded flat
+    // Attributes as SceneBuilder gives a transformed mesh's, with its defaults
+    // (no uv, a tangent to derive, white) where a mesh has none.
+    const std::uint32_t attributes = scene.attribute_flags();
+    if (attributes & CLP_SCENE_UVS) s.uvs.resize(s.vertices.size(), glm::vec2(0));
+    if (attributes & CLP_SCENE_TANGENTS) s.tangents.resize(s.vertices.size(), glm::vec4(0));
+    if (attributes & CLP_SCENE_COLORS) s.colors.resize(s.vertices.size(), glm::vec4(1));
     for (const auto& in : scene.instances) {
         const InstancedMesh& m = scene.meshes[in.mesh];
         const glm::mat3 l(in.object_to_world);
@@ -109,6 +115,10 @@ Scene flatten_instances(const Scene& scene, std::size_t max_triangles) {
             const std::size_t corner[3] = {3 * t, 3 * t + (flip ? 2 : 1), 3 * t + (flip ? 1 : 2)};
             for (std::size_t c : corner) {
                 s.vertices.push_back(glm::vec3(in.object_to_world * glm::vec4(m.vertices[c], 1.0f)));
+                if (attributes & CLP_SCENE_UVS) s.uvs.push_back(m.uvs.empty() ? glm::vec2(0) : m.uvs[c]);
+                if (attributes & CLP_SCENE_COLORS) s.colors.push_back(m.colors.empty() ? glm::vec4(1) : m.colors[c]);
+                if (attributes & CLP_SCENE_TANGENTS)
+                    s.tangents.push_back(m.tangents.empty() ? glm::vec4(0) : moved_tangent(l, flip, m.tangents[c]));
                 if (!normals) continue;
                 const glm::vec3 n = m.normals.empty() ? glm::vec3(0) : normal_m * m.normals[c];
                 const float len = glm::length(n);
@@ -118,10 +128,24 @@ Scene flatten_instances(const Scene& scene, std::size_t max_triangles) {
             s.triangle_object.push_back(object);
         }
     }
-    if (!s.uvs.empty()) s.uvs.resize(s.vertices.size(), glm::vec2(0));
-    if (!s.tangents.empty()) s.tangents.resize(s.vertices.size(), glm::vec4(0));
-    if (!s.colors.empty()) s.colors.resize(s.vertices.size(), glm::vec4(1));
     return s;
+}
+
+glm::vec4 moved_tangent(const glm::mat3& linear, bool mirrors, glm::vec4 tangent) {
+    const glm::vec3 d = linear * glm::vec3(tangent);
+    const float len = glm::length(d);
+    if (!(len > 0) || !std::isfinite(len)) return glm::vec4(0);
+    return glm::vec4(d / len, (tangent.w < 0 ? -1.0f : 1.0f) * (mirrors ? -1.0f : 1.0f));
+}
+
+std::uint32_t Scene::attribute_flags() const {
+    bool uv = !uvs.empty(), tangent = !tangents.empty(), color = !colors.empty();
+    for (const auto& m : meshes) {
+        uv = uv || !m.uvs.empty();
+        tangent = tangent || !m.tangents.empty();
+        color = color || !m.colors.empty();
+    }
+    return (uv ? CLP_SCENE_UVS : 0u) | (tangent ? CLP_SCENE_TANGENTS : 0u) | (color ? CLP_SCENE_COLORS : 0u);
 }
 
 bool Scene::has_emitter() const {

@@ -94,12 +94,17 @@ struct SceneMaterial : Material, MaterialExt {};
 // A mesh placed by instances (Scene::instances): its triangles are stored
 // once, in its own object space, and are not in the scene's flat arrays.
 // Emissive meshes are never instanced (the loaders place them flattened), so
-// the light table holds every emitter as before.
+// the light table holds every emitter as before. Its vertex attributes are
+// as the Scene's below (each empty or three per triangle), tangents in
+// object space: the kernels move them with the instance (textures.cl).
 struct InstancedMesh {
     std::string name;                                // for messages: the file or label it came from
     std::vector<glm::vec3> vertices;                 // three per triangle, object space
     std::vector<std::uint32_t> triangle_material;    // one per triangle
     std::vector<glm::vec3> normals;                  // empty (flat), or three per triangle; zero: none there
+    std::vector<glm::vec2> uvs;
+    std::vector<glm::vec4> tangents;
+    std::vector<glm::vec4> colors;
     std::size_t triangle_count() const { return triangle_material.size(); }
 };
 
@@ -158,6 +163,10 @@ struct Scene {
     std::uint32_t next_object_id() const { return triangle_object.empty() ? 0u : triangle_object.back() + 1u; }
     // Anything that puts light in: an emissive triangle, a punctual light, an environment.
     bool has_emitter() const;
+    // The vertex attributes any triangle has, flat or instanced
+    // (CLP_SCENE_UVS, _TANGENTS, _COLORS): where one has them, every
+    // triangle carries the record, with the defaults above where it has none.
+    std::uint32_t attribute_flags() const;
 };
 
 // The scene with every instance's copy added to the flat arrays (and none
@@ -167,6 +176,13 @@ struct Scene {
 // renderer's comparisons of instancing against flattening use. Throws
 // clpath::Error when the copies would exceed max_triangles.
 Scene flatten_instances(const Scene& scene, std::size_t max_triangles = std::size_t(1) << 31);
+
+// A vertex tangent (xyz, w the bitangent's sign) moved by a transform's
+// linear part: tangents are directions on the surface, so they move with
+// it (not its inverse transpose) and are made unit; a mirroring transform
+// flips the bitangent's sign. A zero or non-finite result is the zero
+// tangent ("derive one"). What SceneBuilder and flatten_instances give.
+glm::vec4 moved_tangent(const glm::mat3& linear, bool mirrors, glm::vec4 tangent);
 
 // The float[3] fields of the shared structs, to and from glm.
 inline void store3(float* dst, glm::vec3 v) {

@@ -95,16 +95,8 @@ void SceneBuilder::add(const std::vector<glm::vec3>& vertices, const std::vector
             if (with_uvs_) scene_.uvs.push_back(given(attributes.uvs) ? (*attributes.uvs)[i] : no_uv);
             if (with_colors_) scene_.colors.push_back(given(attributes.colors) ? (*attributes.colors)[i] : white);
             if (with_tangents_) {
-                glm::vec4 tg = no_tangent;
-                if (given(attributes.tangents)) {
-                    // Tangents are directions on the surface: they move with the
-                    // linear part; a mirroring transform flips the bitangent.
-                    const glm::vec4 src = (*attributes.tangents)[i];
-                    const glm::vec3 d = l * glm::vec3(src);
-                    const float len = glm::length(d);
-                    if (len > 0 && std::isfinite(len)) tg = glm::vec4(d / len, (src.w < 0 ? -1.0f : 1.0f) * (flip ? -1.0f : 1.0f));
-                }
-                scene_.tangents.push_back(tg);
+                scene_.tangents.push_back(given(attributes.tangents) ? moved_tangent(l, flip, (*attributes.tangents)[i])
+                                                                     : no_tangent);
             }
         }
         if (!with_normals_) continue;

@@ -194,6 +194,10 @@ clpath_cli_test(render_light_sampler_forced_power ARGS render city:100 --light-s
 clpath_cli_test(render_bunnies_10000 ARGS render bunnies:10000 --spp 1 --width 32 --height 18
                 -o ${CLI_OUT}/bunnies.pfm
                 OUTPUT "summary: .*triangles=696660002 .*nonfinite=0 .*scene_device_bytes=[1-9][0-9][0-9][0-9][0-9][0-9][0-9] light_sampler=power instances=10001 instanced_meshes=2 placed_triangles=696660002 tlas_bytes=")
+# a textured glTF mesh placed by three nodes is stored once (the ground, flat, is the other mesh)
+clpath_cli_test(render_gltf_textured_instances ARGS render ${CMAKE_SOURCE_DIR}/scenes/suzanne/suzanne-instances.gltf
+                --spp 1 --width 32 --height 24 -o ${CLI_OUT}/suzanne-instances.pfm
+                OUTPUT "summary: .*nonfinite=0 .* instances=4 instanced_meshes=2 placed_triangles=11810 ")
 # bench instances: the two-level walk's answers are the one-level walk's over
 # the flattened scene, and robust Embree's over the instances, on every ray
 # (both watertight), but for hits within kNearOrigin of a ray's origin,

@@ -116,6 +116,8 @@ const std::vector<Entry>& entries() {
          "glTF KHR_materials_clearcoat: coat weight and roughness textures over plastic; a smooth coat over metal", 16},
         {"gltf-transmission", "benchmarks/references/scenes/gltf-transmission.json",
          "glTF KHR_materials_transmission, thin-walled: rough clear pane; tinted pane with a transmission texture", 16},
+        {"gltf-instances", "benchmarks/references/scenes/gltf-instances.json",
+         "glTF meshes placed by instances: a normal map sheared by a non-uniform scale; a mirrored checker", 16},
         {"suzanne", "scenes/suzanne/Suzanne.gltf",
          "a bare glTF model: base colour and metallic-roughness textures, the presentation's sky, sun and ground", 16},
         {"textured", "scenes/textured/textured.json",

@@ -70,8 +70,12 @@ TEST(KernelBudgets, HeldKernelsFailPastTheirHeldFigures) {
         SCOPED_TRACE(b.kernel);
         // What is held is held above the budget; what is not is the budget itself.
         const bool regs = b.held_registers != 0, stack = b.held_stack_bytes != 0;
-        if (regs) ASSERT_GT(b.held_registers, b.max_registers);
-        if (stack) ASSERT_GT(b.held_stack_bytes, b.max_stack_bytes);
+        if (regs) {
+            ASSERT_GT(b.held_registers, b.max_registers);
+        }
+        if (stack) {
+            ASSERT_GT(b.held_stack_bytes, b.max_stack_bytes);
+        }
         const std::size_t n = std::size_t(regs) + std::size_t(stack);
         const int at_regs = regs ? b.held_registers : b.max_registers;
         const int at_stack = stack ? b.held_stack_bytes : b.max_stack_bytes;
@@ -92,6 +96,25 @@ TEST(KernelBudgets, HeldKernelsFailPastTheirHeldFigures) {
         }
     }
     if (held == 0) GTEST_SKIP() << "every kernel is within its budget: none is held";
+}
+
+// A hold naming several options holds only programs with all of them: with
+// one of them alone, the budget for any program applies.
+TEST(KernelBudgets, AHeldCombinationHoldsOnlyTheCombination) {
+    int combinations = 0;
+    for (const KernelBudget& b : kernel_budgets()) {
+        if (b.held_registers == 0 || !b.with_option) continue;
+        const std::string with = b.with_option;
+        if (with.find(' ') == std::string::npos) continue;
+        ++combinations;
+        SCOPED_TRACE(b.kernel);
+        const std::string base = "-cl-std=CL1.2 -DCLP_HAS_MAT_DIFFUSE -DCLP_TARGET_GPU ";
+        const ProgramSpec all{"wf-held", {}, base + with, {}, ""};
+        const ProgramSpec one{"wf-one", {}, base + with.substr(0, with.find(' ')), {}, ""};
+        EXPECT_TRUE(budget_violations({compiled(all, b.target, {uses(b.kernel, b.held_registers, 0)})}).empty());
+        EXPECT_EQ(budget_violations({compiled(one, b.target, {uses(b.kernel, b.held_registers, 0)})}).size(), 1u);
+    }
+    if (combinations == 0) GTEST_SKIP() << "no held combination of options";
 }
 
 TEST(KernelBudgets, CpuCodeIsNotHeldToThem) {

@@ -78,7 +78,7 @@ TEST(GltfDocument, NodePathsPastTheLimitAreRefusedQuickly) {
     EXPECT_TRUE(has(e, "the limit is 1000000 placed nodes")) << e;
     EXPECT_LT(seconds, 30.0);  // generous for a loaded machine: the walk it replaces never ended
     // Control: 2^8 paths place the quad 256 times.
-    EXPECT_EQ(gltf_text_scene("dag.gltf", doubling_chain(8).embedded()).triangle_count(), 512u);
+    EXPECT_EQ(gltf_text_scene("dag.gltf", doubling_chain(8).embedded()).placed_triangle_count(), 512u);
     // The limit is the load's to set (LoadOptions::max_placed_nodes).
     MemoryFiles f;
     f.files["dag.gltf"] = doubling_chain(8).embedded();
@@ -103,7 +103,7 @@ TEST(GltfDocument, CyclesAndRootlessHierarchiesAreNamed) {
     EXPECT_TRUE(has(gltf_text_error("c.gltf", g.embedded()), "c.gltf: nodes: every node is another's child"));
     // Control: a shared child without a cycle is placed once per path.
     g.doc["nodes"] = {{{"children", {1, 2}}}, {{"children", {3}}}, {{"children", {3}}}, {{"mesh", 0}}};
-    EXPECT_EQ(gltf_text_scene("c.gltf", g.embedded()).triangle_count(), 4u);
+    EXPECT_EQ(gltf_text_scene("c.gltf", g.embedded()).placed_triangle_count(), 4u);
 }
 
 TEST(GltfDocument, GlbHeaderVersionMustBeTwo) {

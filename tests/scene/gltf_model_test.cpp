@@ -121,7 +121,10 @@ TEST(Gltf, MeshPlacedTwiceGivesTwoObjects) {
     GltfBuilder g = quad_model();
     g.doc["nodes"] = {{{"mesh", 0}}, {{"mesh", 0}, {"translation", {0, 0, 5}}}};
     g.doc["scenes"] = {{{"nodes", {0, 1}}}};
-    const Scene s = with("q.gltf", g.embedded()).load("q.gltf");
+    // Stored once and placed by two instances; flattened, two objects.
+    const Scene inst = with("q.gltf", g.embedded()).load("q.gltf");
+    ASSERT_EQ(inst.instances.size(), 2u);
+    const Scene s = flatten_instances(inst);
     ASSERT_EQ(s.triangle_count(), 4u);
     EXPECT_NE(s.triangle_object[0], s.triangle_object[2]);
     expect_near(s.vertices[6], {0, 0, 5});

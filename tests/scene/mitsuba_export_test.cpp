@@ -257,6 +257,31 @@ TEST(MitsubaExport, RefusesWhatMitsubaWouldModelDifferently) {
     EXPECT_THROW(export_mitsuba_scene(transmits, "x", "test"), Error);
 }
 
+// An instanced scene flattened (as `clpath export` does) gives its flat
+// triangles zero shading normals, clpath's "shade flat here"; Mitsuba
+// refuses a zero normal, so each is written as its triangle's own.
+TEST(MitsubaExport, ZeroShadingNormalsAreWrittenAsTheTrianglesOwn) {
+    const Scene inst = load_scene(repo_file("benchmarks/references/scenes/gltf-instances.json"));
+    ASSERT_FALSE(inst.instances.empty());
+    const Scene flat = flatten_instances(inst);
+    ASSERT_FALSE(flat.normals.empty());
+    const MitsubaExport e = export_mitsuba_scene(flat, "i", "test");
+    std::size_t normals = 0;
+    for (const auto& [name, text] : e.meshes) {
+        std::istringstream in(text);
+        std::string line;
+        while (std::getline(in, line)) {
+            if (line.rfind("vn ", 0) != 0) continue;
+            std::istringstream l(line.substr(3));
+            glm::dvec3 n;
+            l >> n.x >> n.y >> n.z;
+            EXPECT_NEAR(glm::length(n), 1.0, 1e-6) << name << ": " << line;
+            ++normals;
+        }
+    }
+    EXPECT_GT(normals, 0u);
+}
+
 TEST(MitsubaExport, RefusesAnEmptyScene) {
     Scene s;
     EXPECT_THROW(export_mitsuba_scene(s, "x", "test"), Error);

@@ -180,6 +180,9 @@ MitsubaExport export_mitsuba_scene(const Scene& scene, const std::string& stem, 
                 if (normals)
                     for (int j : order) {
                         glm::vec3 sn = scene.normals[3 * t + j];
+                        // Zero is clpath's "none here, shade flat" (an instanced scene
+                        // flattened gives its flat triangles that); Mitsuba refuses it.
+                        if (sn == glm::vec3(0) && len > 0) sn = glm::vec3(n / len);
                         if (side) sn = -sn;
                         obj += "vn " + num(sn.x) + " " + num(sn.y) + " " + num(sn.z) + "\n";
                     }

@@ -41,20 +41,19 @@ void add_gltf(Scene& scene, SceneBuilder& builder, const GltfModel& model, const
     };
     static const std::vector<glm::vec3> kNone;
     // A primitive of a mesh that several nodes place is stored once and
-    // placed by instances, unless it could not be instanced anyway (it
-    // emits, or carries textures or per-vertex attributes: flattened_because);
-    // then, as every primitive placed once, it is added flattened, in node order.
+    // placed by instances, with its attributes, unless it could not be
+    // instanced anyway (it emits: flattened_because); then, as every
+    // primitive placed once, it is added flattened, in node order.
     std::vector<std::vector<glm::mat4>> placements(model.meshes.size());
     for (const GltfInstance& inst : model.instances) placements[inst.mesh].push_back(place * inst.world);
-    auto shared = [&](std::size_t mesh, const GltfPrimitive& p, std::uint32_t mat) {
-        return placements[mesh].size() > 1 &&
-               flattened_because(scene, {mat}, VertexAttributes{&p.uvs, &p.tangents, &p.colors}).empty();
+    auto shared = [&](std::size_t mesh, std::uint32_t mat) {
+        return placements[mesh].size() > 1 && flattened_because(scene, {mat}).empty();
     };
     for (const GltfInstance& inst : model.instances)
         for (const GltfPrimitive& p : model.meshes[inst.mesh]) {
             if (p.vertices.empty()) continue;
             const std::uint32_t mat = scene_material(p.material);
-            if (shared(inst.mesh, p, mat)) continue;
+            if (shared(inst.mesh, mat)) continue;
             VertexAttributes attr{&p.uvs, &p.tangents, &p.colors};
             builder.add(p.vertices, smooth ? p.normals : kNone, place * inst.world, {mat}, file + ": " + inst.node + " " + p.path,
                         attr);
@@ -64,7 +63,7 @@ void add_gltf(Scene& scene, SceneBuilder& builder, const GltfModel& model, const
         for (const GltfPrimitive& p : model.meshes[m]) {
             if (p.vertices.empty()) continue;
             const std::uint32_t mat = scene_material(p.material);
-            if (!shared(m, p, mat)) {
+            if (!shared(m, mat)) {
                 not_shared += placements[m].size() > 1;
                 continue;
             }
@@ -76,7 +75,7 @@ void add_gltf(Scene& scene, SceneBuilder& builder, const GltfModel& model, const
     if (not_shared)
         scene.notes.push_back(file + ": " + std::to_string(not_shared) +
                               " mesh primitives placed by several nodes are placed flattened, not instanced (they emit, "
-                              "or carry textures, texture coordinates or colours, which instances do not)");
+                              "and the light table lists flattened emitters only)");
     const glm::mat3 linear(place);
     for (PunctualLight l : model.lights) {
         l.position = glm::vec3(place * glm::vec4(l.position, 1));

@@ -83,19 +83,9 @@ std::vector<glm::mat4> read_instance_transforms(const Value& list) {
     return out;
 }
 
-std::string flattened_because(const Scene& scene, const std::vector<std::uint32_t>& materials,
-                              const VertexAttributes& attributes) {
-    bool emissive = false, textured = false;
-    for (auto m : materials) {
-        emissive = emissive || emits(scene.materials[m]);
-        for (int t : scene.materials[m].texture) textured = textured || t != CLP_NO_TEXTURE;
-    }
-    const bool has_attributes = (attributes.uvs && !attributes.uvs->empty()) ||
-                                (attributes.tangents && !attributes.tangents->empty()) ||
-                                (attributes.colors && !attributes.colors->empty());
-    if (emissive) return "the mesh emits, and the light table lists flattened emitters only";
-    if (textured || has_attributes)
-        return "the mesh has textures, texture coordinates or colours, which instances do not carry";
+std::string flattened_because(const Scene& scene, const std::vector<std::uint32_t>& materials) {
+    for (auto m : materials)
+        if (emits(scene.materials[m])) return "the mesh emits, and the light table lists flattened emitters only";
     return "";
 }
 
@@ -107,7 +97,7 @@ void place_mesh_instances(Scene& scene, SceneBuilder& builder, const std::string
     // bunnies:1 it traced 0.62-0.66x the rays per second of the one-level
     // BVH over the same triangles (PoCL, benchmarks/results/pocl-epyc-2core/
     // instancing), so such a mesh is placed as the flat scene places it.
-    std::string because = flattened_because(scene, materials, attributes);
+    std::string because = flattened_because(scene, materials);
     if (because.empty() && transforms.size() == 1) because = "a mesh placed once is walked faster in the one-level BVH";
     if (!because.empty()) {
         scene.notes.push_back(label + ": " + std::to_string(transforms.size()) +
@@ -120,11 +110,12 @@ void place_mesh_instances(Scene& scene, SceneBuilder& builder, const std::string
     if (!why.empty()) throw Error(label + ": transform: " + why);
     // The mesh in the space the instances place: `place` applied as
     // SceneBuilder applies a transform (mirroring swaps two corners back,
-    // normals go through the inverse transpose), so a copy under the
-    // identity is the flattened object, triangle for triangle.
+    // normals go through the inverse transpose, tangents move with it), so a
+    // copy under the identity is the flattened object, triangle for triangle.
     const glm::mat3 l(place);
     const bool flip = glm::determinant(l) < 0;
     const glm::mat3 normal_m = glm::transpose(glm::inverse(l));
+    auto given = [](const auto* v) { return v && !v->empty(); };
     InstancedMesh mesh;
     mesh.name = label;
     const std::size_t n = vertices.size() / 3;
@@ -140,12 +131,17 @@ void place_mesh_instances(Scene& scene, SceneBuilder& builder, const std::string
         const int corner[3] = {0, flip ? 2 : 1, flip ? 1 : 2};
         for (int c : corner) mesh.vertices.push_back(p[c]);
         mesh.triangle_material.push_back(materials.size() == 1 ? materials[0] : materials[t]);
-        if (!normals.empty())
-            for (int c : corner) {
-                const glm::vec3 nv = normal_m * normals[3 * t + std::size_t(c)];
+        for (int c : corner) {
+            const std::size_t i = 3 * t + std::size_t(c);
+            if (!normals.empty()) {
+                const glm::vec3 nv = normal_m * normals[i];
                 const float len = glm::length(nv);
                 mesh.normals.push_back(len > 0 && std::isfinite(len) ? nv / len : glm::vec3(0));
             }
+            if (given(attributes.uvs)) mesh.uvs.push_back((*attributes.uvs)[i]);
+            if (given(attributes.tangents)) mesh.tangents.push_back(moved_tangent(l, flip, (*attributes.tangents)[i]));
+            if (given(attributes.colors)) mesh.colors.push_back((*attributes.colors)[i]);
+        }
     }
     if (dropped)
         scene.warnings.push_back(label + ": " + std::to_string(dropped) + " degenerate triangles dropped");

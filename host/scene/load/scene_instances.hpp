@@ -21,19 +21,17 @@ namespace clpath {
 // empty list, a non-finite, non-affine or singular transform.
 std::vector<glm::mat4> read_instance_transforms(const jsonf::Value& list);
 
-// The mesh (vertices three per triangle, normals empty or parallel, one
-// material per triangle), first placed by `place` (the object's own
-// transform), then by each of `transforms`. Kept once as an instanced mesh
-// unless a material of it emits (the light table lists flattened emitters
-// only), maps a texture or it has texture coordinates or colours (instanced
-// meshes carry none): then each copy is added flattened, and a note says why.
-// Degenerate triangles (after `place`) are dropped, as SceneBuilder does.
-// Why a mesh of these materials and per-vertex attributes cannot be
-// instanced (it emits, maps a texture, has texture coordinates, tangents or
-// colours), or empty when it can.
-std::string flattened_because(const Scene& scene, const std::vector<std::uint32_t>& materials,
-                              const VertexAttributes& attributes);
+// Why a mesh of these materials cannot be instanced (it emits: the light
+// table lists flattened emitters only), or empty when it can.
+std::string flattened_because(const Scene& scene, const std::vector<std::uint32_t>& materials);
 
+// The mesh (vertices three per triangle, normals empty or parallel, one
+// material per triangle, attributes each empty or parallel), first placed by
+// `place` (the object's own transform), then by each of `transforms`. Kept
+// once as an instanced mesh, with its attributes, unless it emits
+// (flattened_because) or is placed once (walked faster flattened): then
+// each copy is added flattened, and a note says why. Degenerate triangles
+// (after `place`) are dropped, as SceneBuilder does.
 void place_mesh_instances(Scene& scene, SceneBuilder& builder, const std::string& label,
                           const std::vector<glm::vec3>& vertices, const std::vector<glm::vec3>& normals,
                           const std::vector<std::uint32_t>& materials, const glm::mat4& place,

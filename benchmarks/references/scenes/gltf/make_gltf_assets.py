@@ -32,9 +32,10 @@ def byte(v):
     return max(0, min(255, int(round(v * 255))))
 
 
-def quad(name, half_x, half_z, uv_range, material, images, sampler):
+def quad(name, half_x, half_z, uv_range, material, images, sampler, nodes=None, roots=None):
     """A quad in the xz plane facing +y, u along +x and v along +z (so its
-    UVs are not mirrored: glTF's bitangent sign +1), with one material."""
+    UVs are not mirrored: glTF's bitangent sign +1), with one material;
+    placed by one node, or by `nodes` (the scene's `roots` among them)."""
     (u0, u1), (v0, v1) = uv_range
     pos = [(-half_x, 0, -half_z), (-half_x, 0, half_z), (half_x, 0, half_z), (half_x, 0, -half_z)]
     uv = [(u0 + (p[0] + half_x) / (2 * half_x) * (u1 - u0), v0 + (p[2] + half_z) / (2 * half_z) * (v1 - v0)) for p in pos]
@@ -43,7 +44,7 @@ def quad(name, half_x, half_z, uv_range, material, images, sampler):
             b"".join(struct.pack("<2f", *t) for t in uv) + struct.pack("<6H", *idx))
     doc = {
         "asset": {"version": "2.0", "generator": "clpath make_gltf_assets.py"},
-        "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "scene": 0, "scenes": [{"nodes": roots or [0]}], "nodes": nodes or [{"mesh": 0}],
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3,
                                     "material": 0}]}],
         "materials": [material],
@@ -138,6 +139,24 @@ def main():
     quad("bumps.gltf", 0.8, 0.6, ((0, 2), (0, 1.5)),
          mat("bumpy", metallicFactor=0, roughnessFactor=0.35, baseColorFactor=[0.7, 0.75, 0.8, 1], normal=0,
              normal_scale=0.8), ["bumps.png"], rep)
+    # (d') the same normal-mapped quad, and the checker, each placed by two
+    # nodes (the renderer stores each mesh once and places it by instances):
+    # bumps side by side, the second turned in its plane under a parent's
+    # non-uniform scale (its tangents sheared: they move with the transform,
+    # not with its inverse transpose); checkers side by side, the second
+    # mirrored. No mirrored normal map: Mitsuba's normalmap builds its
+    # frame as cross(n, dp/du), the bitangent sign +1 only.
+    turn = [0, math.sin(math.radians(17.5)), 0, math.cos(math.radians(17.5))]
+    quad("bumps-pair.gltf", 0.8, 0.6, ((0, 2), (0, 1.5)),
+         mat("bumpy", metallicFactor=0, roughnessFactor=0.35, baseColorFactor=[0.7, 0.75, 0.8, 1], normal=0,
+             normal_scale=0.8), ["bumps.png"], rep,
+         nodes=[{"mesh": 0, "translation": [-0.45, 0, 0], "scale": [0.5, 1, 0.5]},
+                {"translation": [0.45, 0, 0], "scale": [0.6, 1, 0.35], "children": [2]},
+                {"mesh": 0, "rotation": turn}], roots=[0, 1])
+    quad("checker-pair.gltf", 0.4, 0.4, ((0, 2.5), (0, 2.5)),
+         mat("checker", metallicFactor=0, roughnessFactor=0.5, base=0), ["checker.png"], rep,
+         nodes=[{"mesh": 0, "translation": [-0.45, 0, 0]},
+                {"mesh": 0, "translation": [0.45, 0, 0], "scale": [-1, 1, 1]}], roots=[0, 1])
     # (e) KHR_materials_clearcoat: a coat of weight and roughness from stripes
     # over dark red plastic (car paint: the coat dominates); a smooth full coat over a rough metal.
     quad("coat-stripes.gltf", 0.6, 0.45, ((0, 1), (0, 1)),
