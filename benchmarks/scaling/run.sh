@@ -10,7 +10,9 @@
 # ROOM_SIZES (closed-room sizes for the ray batches, default "1003542 3996202"),
 # PLOT=0 to skip the plots (a machine without matplotlib; plot later with
 # benchmarks/scaling/plot_scaling.py), SCALING=0 to run the ray batches only
-# (the scaling folder is left as it is), NOTE (a line on the machine's state for the rays README).
+# (the scaling folder is left as it is), NOTE (a line on the machine's state for the rays README),
+# SCALING_ROUNDS (runs of bench scaling, default 3: the table gives each
+# rate's median and its variation between the runs).
 set -euo pipefail
 DIR=${1:?usage: run.sh DEVICE_DIR [DEVICE_SPEC] [BUILD_DIR]}
 SPEC=${2:-}
@@ -39,9 +41,24 @@ header() {
 
 # --- scaling ---------------------------------------------------------------------
 start=$(date +%s)
+ROUNDS=${SCALING_ROUNDS:-3}
 if [ "${SCALING:-1}" != 0 ]; then
-"$CLPATH" bench scaling "${DEV[@]}" --max "$MAX" --time-cap "$CAP" \
-  --csv "$OUT/scaling/scaling.csv" --md "$OUT/scaling/scaling.md" 2>&1 | tee "$OUT/scaling/log.txt"
+  scaling_load_before=$(cut -d' ' -f1-3 /proc/loadavg)
+  : > "$OUT/scaling/log.txt"
+  rm -f "$OUT"/scaling/scaling-run*.csv
+  for r in $(seq 1 "$ROUNDS"); do
+    echo "== run $r of $ROUNDS" | tee -a "$OUT/scaling/log.txt"
+    "$CLPATH" bench scaling "${DEV[@]}" --max "$MAX" --time-cap "$CAP" \
+      --csv "$OUT/scaling/scaling-run$r.csv" 2>&1 | tee -a "$OUT/scaling/log.txt"
+  done
+  if [ "$ROUNDS" -ge 2 ]; then
+    "${PYTHON:-/usr/bin/python3}" "$ROOT/benchmarks/scaling/summarize_rounds.py" "$OUT/scaling/scaling.csv" \
+      "$OUT/scaling/scaling.md" "$OUT"/scaling/scaling-run*.csv
+  else
+    cp "$OUT/scaling/scaling-run1.csv" "$OUT/scaling/scaling.csv"
+    sed -n '/^| triangles/,$p' "$OUT/scaling/log.txt" > "$OUT/scaling/scaling.md"
+  fi
+  scaling_load_after=$(cut -d' ' -f1-3 /proc/loadavg)
 fi
 scaling_s=$(( $(date +%s) - start ))
 
@@ -75,9 +92,13 @@ fi
   echo "# Scaling benchmark: \`clpath bench scaling\`"
   echo
   header
-  echo "- command: \`clpath bench scaling ${DEV[*]} --max $MAX --time-cap $CAP\` (benchmarks/scaling/run.sh), $scaling_s s in all"
-  echo "- scenes: \`scaling:N\` (the thesis room around one bumpy UV sphere); ray batches at 96x64 pixels x 16 samples,"
-  echo "  path samples at 64x48 pixels, 2 samples per pixel, path integrator; CPU check of 4096 evenly spaced rays per batch."
+  echo "- command: \`clpath bench scaling ${DEV[*]} --max $MAX --time-cap $CAP\`, run $ROUNDS times (benchmarks/scaling/run.sh), $scaling_s s in all;"
+  echo "  load average before and after: $scaling_load_before / $scaling_load_after.${NOTE:+ $NOTE}"
+  echo "- scenes: \`scaling:N\` (the thesis room around one bumpy UV sphere); ray batches at 480x320 pixels x 16 samples"
+  echo "  (2.46 million rays; one warm-up and 3 timed launches, Mrays/s from their mean), the path column a 320x240"
+  echo "  render at 4 samples per pixel by the renderer \`clpath render\` runs (path integrator); CPU check of 4096"
+  echo "  evenly spaced rays per batch. Each entry: the median of the runs, with their coefficient of variation."
+  echo "  Every run's table: scaling-run*.csv; output: log.txt."
   echo "- the flat structure (one box per object, the thesis renderer's) stops when its next size is predicted to take"
   echo "  longer than $CAP s; sizes above the memory budget (80 % of MemAvailable) are skipped; both say so in the table."
   echo

@@ -21,7 +21,8 @@ struct ScalingCliOptions {
     double min = 100, max = 10'000'000;
     double time_cap = 60;
     std::string accel = "both", csv, md, device;
-    int width = 96, height = 64, launches = 3;
+    int width = 480, height = 320, launches = 3;
+    int path_width = 320, path_height = 240, path_spp = 4;
     bool quick = false;
 };
 
@@ -42,6 +43,9 @@ int run_scaling_cli(const ScalingCliOptions& c) {
     o.ray_width = c.width;
     o.ray_height = c.height;
     o.launches = c.launches;
+    o.path_width = c.path_width;
+    o.path_height = c.path_height;
+    o.path_spp = std::uint32_t(c.path_spp);
     if (c.quick) {
         o.min = 100;
         o.max = std::min<std::size_t>(o.max, 1000);
@@ -101,6 +105,15 @@ Command add_bench_scaling_command(CLI::App& bench) {
         ->check(whole_number(CLP_BATCH_TILE, 4096))
         ->capture_default_str();
     cmd->add_option("--launches", o->launches, "Timed launches per batch")->check(whole_number(1, 100))->capture_default_str();
+    cmd->add_option("--path-width", o->path_width, "Path column: the render's pixels across")
+        ->check(whole_number(1, 4096))
+        ->capture_default_str();
+    cmd->add_option("--path-height", o->path_height, "Path column: the render's pixels down")
+        ->check(whole_number(1, 4096))
+        ->capture_default_str();
+    cmd->add_option("--path-spp", o->path_spp, "Path column: samples per pixel")
+        ->check(whole_number(1, 4096))
+        ->capture_default_str();
     cmd->add_option("--csv", o->csv, "Write the table as CSV to this file");
     cmd->add_option("--md", o->md, "Write the table as Markdown to this file");
     cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')")
