@@ -4,11 +4,14 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "cl/huge_pages.hpp"
 #include "util/env_values.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
 namespace {
+
+void CL_CALLBACK free_host_copy(cl_mem, void* p) { free_huge_copy(p); }
 
 std::string mib(std::size_t bytes) {
     std::ostringstream os;
@@ -79,7 +82,21 @@ Buffer Context::buffer(std::size_t bytes, cl_mem_flags flags, const std::string&
     if (bytes == 0) bytes = 16;  // OpenCL forbids empty buffers; a kernel never reads this one
     check_fits({{what, bytes}});
     cl_int err = CL_SUCCESS;
-    cl_mem m = clCreateBuffer(ctx_, flags | (init ? CL_MEM_COPY_HOST_PTR : 0), bytes, const_cast<void*>(init), &err);
+    cl_mem m = nullptr;
+    // A large read-only buffer on a CPU device is read in place from memory
+    // on huge pages (cl/huge_pages.hpp): the scene's nodes and triangles.
+    // CLPATH_HUGE_PAGES=0 keeps every buffer a device copy (to measure the difference).
+    const auto huge = env_whole_number("CLPATH_HUGE_PAGES", 0, 1, "(0 or 1)");
+    if (init && device_.is_cpu && flags == CL_MEM_READ_ONLY && bytes >= kHugePageBytes && huge.value_or(1) == 1)
+        if (void* host = huge_copy(init, bytes)) {
+            m = clCreateBuffer(ctx_, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, bytes, host, &err);
+            if (err != CL_SUCCESS || clSetMemObjectDestructorCallback(m, free_host_copy, host) != CL_SUCCESS) {
+                if (m) clReleaseMemObject(m);  // then the ordinary copy below, after the device is done with it
+                m = nullptr;
+                if (err != CL_SUCCESS) free_huge_copy(host);
+            }
+        }
+    if (!m) m = clCreateBuffer(ctx_, flags | (init ? CL_MEM_COPY_HOST_PTR : 0), bytes, const_cast<void*>(init), &err);
     cl_check(err, "allocating " + what + " (" + mib(bytes) + ") on " + device_.name);
     *allocated_ += bytes;
     if (init) to_device_ += bytes;
