@@ -48,13 +48,13 @@ static inline float3 instance_dir(global const float4* im, float3 v) {
     return xform_dir(im[0], im[1], im[2], v);
 }
 
-/* -1 for a mirroring instance (det M < 0), else 1: the sign its tangent
- * frames' bitangents take in world space. The flattened copy's corners are
- * swapped back, which turns dp/du x dp/dv against its normal, and a vertex
- * tangent's bitangent is cross(n, t) w with n through the inverse
- * transpose: both flip with det M's sign (scene.hpp, moved_tangent). */
+/* -1 for a mirroring instance (det M < 0), else 1 (Instance.det_sign): the
+ * sign its tangent frames' bitangents take in world space. The flattened
+ * copy's corners are swapped back, which turns dp/du x dp/dv against its
+ * normal, and a vertex tangent's bitangent is cross(n, t) w with n through
+ * the inverse transpose: both flip with det M's sign (scene.hpp, moved_tangent). */
 static inline float instance_handedness(global const float4* im) {
-    return dot(im[0].xyz, cross(im[1].xyz, im[2].xyz)) < 0.0f ? -1.0f : 1.0f;
+    return ((global const Instance*)im)->det_sign;
 }
 
 /* The hit point of barycentrics b1, b2 on the object-space triangle v0 v1 v2

@@ -13,6 +13,9 @@ namespace {
 
 void CL_CALLBACK free_host_copy(cl_mem, void* p) { free_huge_copy(p); }
 
+// CLPATH_HUGE_PAGES=0 keeps every buffer a device copy (to measure the difference).
+bool huge_pages_wanted() { return env_whole_number("CLPATH_HUGE_PAGES", 0, 1, "(0 or 1)").value_or(1) == 1; }
+
 std::string mib(std::size_t bytes) {
     std::ostringstream os;
     os.precision(4);
@@ -25,6 +28,7 @@ std::string mib(std::size_t bytes) {
 Context::Context(const DeviceInfo& device) : device_(device) {
     // A bad value is refused before any work, not when the first buffer is made.
     env_whole_number("CLPATH_DEVICE_MEMORY_LIMIT", 1, UINT64_MAX, "bytes");
+    huge_pages_ = huge_pages_wanted();
     cl_int err = CL_SUCCESS;
     ctx_ = clCreateContext(nullptr, 1, &device_.device, nullptr, nullptr, &err);
     cl_check(err, "clCreateContext on " + device_.name);
@@ -37,6 +41,7 @@ Context::Context(const DeviceInfo& device) : device_(device) {
 
 Context::Context(const DeviceInfo& device, const std::vector<cl_context_properties>& properties) : device_(device) {
     env_whole_number("CLPATH_DEVICE_MEMORY_LIMIT", 1, UINT64_MAX, "bytes");
+    huge_pages_ = huge_pages_wanted();
     cl_int err = CL_SUCCESS;
     ctx_ = clCreateContext(properties.empty() ? nullptr : properties.data(), 1, &device_.device, nullptr, nullptr, &err);
     cl_check(err, "clCreateContext (with properties) on " + device_.name);
@@ -85,9 +90,7 @@ Buffer Context::buffer(std::size_t bytes, cl_mem_flags flags, const std::string&
     cl_mem m = nullptr;
     // A large read-only buffer on a CPU device is read in place from memory
     // on huge pages (cl/huge_pages.hpp): the scene's nodes and triangles.
-    // CLPATH_HUGE_PAGES=0 keeps every buffer a device copy (to measure the difference).
-    const auto huge = env_whole_number("CLPATH_HUGE_PAGES", 0, 1, "(0 or 1)");
-    if (init && device_.is_cpu && flags == CL_MEM_READ_ONLY && bytes >= kHugePageBytes && huge.value_or(1) == 1)
+    if (huge_pages_ && init && device_.is_cpu && flags == CL_MEM_READ_ONLY && bytes >= kHugePageBytes)
         if (void* host = huge_copy(init, bytes)) {
             m = clCreateBuffer(ctx_, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, bytes, host, &err);
             if (err != CL_SUCCESS || clSetMemObjectDestructorCallback(m, free_host_copy, host) != CL_SUCCESS) {

@@ -151,6 +151,7 @@ private:
     cl_command_queue queue_ = nullptr;
     std::shared_ptr<MemoryCounter> allocated_ = std::make_shared<MemoryCounter>(0);
     std::atomic<std::uint64_t> to_device_{0}, from_device_{0};
+    bool huge_pages_ = true;  // CLPATH_HUGE_PAGES (cl/huge_pages.hpp): large read-only buffers read in place
 };
 
 // Seconds a finished, profiled event spent executing; releases the event.

@@ -31,7 +31,6 @@ SceneFeatures scene_features(const Scene& scene) {
             f.transmission = f.transmission || m.transmission > 0;
         }
     }
-    f.vertex_colors = (scene.attribute_flags() & CLP_SCENE_COLORS) != 0;
     f.lights = !scene.lights.empty();
     f.environment = scene.environment.emits();
     f.environment_map = f.environment && !scene.environment.image.empty();
@@ -62,6 +61,7 @@ SceneFeatures scene_features(const Scene& scene) {
         }
     f.many_lights = finite >= kManyFiniteLights && glm::length(hi - lo) >= kManyLightsSpread * glm::length(shi - slo);
     f.attributes = scene.attribute_flags();
+    f.vertex_colors = (f.attributes & CLP_SCENE_COLORS) != 0;
     return f;
 }
 

@@ -13,6 +13,7 @@
 #include "cl/context.hpp"
 #include "cl/huge_pages.hpp"
 #include "support/test_device.hpp"
+#include "util/error.hpp"
 
 using namespace clpath;
 
@@ -66,9 +67,16 @@ TEST(HugePages, ALargeReadOnlyBufferIsReadInPlaceAndReadsBackUnchanged) {
     EXPECT_EQ(read_back(ctx, s, small.size()), small);
     Buffer w = ctx.buffer(data.size() * 4, CL_MEM_READ_WRITE, "writable", data.data());
     EXPECT_EQ(flags_of(w) & CL_MEM_USE_HOST_PTR, 0u);
-    ::setenv("CLPATH_HUGE_PAGES", "0", 1);
-    Buffer off = ctx.buffer(data.size() * 4, CL_MEM_READ_ONLY, "switched off", data.data());
+    ::setenv("CLPATH_HUGE_PAGES", "0", 1);  // read when a context is made
+    Context switched_off(ctx.device());
     ::unsetenv("CLPATH_HUGE_PAGES");
+    Buffer off = switched_off.buffer(data.size() * 4, CL_MEM_READ_ONLY, "switched off", data.data());
     EXPECT_EQ(flags_of(off) & CL_MEM_USE_HOST_PTR, 0u);
-    EXPECT_EQ(read_back(ctx, off, data.size()), data);
+    EXPECT_EQ(read_back(switched_off, off, data.size()), data);
+}
+
+TEST(HugePages, ABadSwitchIsRefusedWhenAContextIsMade) {
+    ::setenv("CLPATH_HUGE_PAGES", "2", 1);
+    EXPECT_THROW(Context c(test::device().device()), UsageError);
+    ::unsetenv("CLPATH_HUGE_PAGES");
 }
