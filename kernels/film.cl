@@ -101,8 +101,14 @@ kernel void film_add_exact(global AccumPixel* accum, uint count, global ulong2* 
     if (i >= count) return;
     uint bad = 0;
     ulong2 d[3];
-    for (int c = 0; c < 3; ++c)
-        d[c] = add128(fixed_from_float(accum[i].sum[c], &bad), neg128(fixed_from_float(accum[i].comp[c], &bad)));
+    for (int c = 0; c < 3; ++c) {
+        d[c] = fixed_from_float(accum[i].sum[c], &bad);
+        /* A chunk of one sample (the default chunk of renders up to 127
+         * samples per pixel) leaves every compensation zero, and zero's fixed
+         * point is zero (of either sign): half the conversions skipped. */
+        const float comp = accum[i].comp[c];
+        if (comp != 0.0f) d[c] = add128(d[c], neg128(fixed_from_float(comp, &bad)));
+    }
     if (bad) {
         atomic_or(error, bad);
         return;
