@@ -4,12 +4,14 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <deque>
 #include <functional>
 #include <string>
 #include <system_error>
 #include <thread>
 
 #include "bvh/binning.hpp"
+#include "bvh/partition.hpp"
 #include "bvh/build_simd.hpp"
 #include "util/error.hpp"
 
@@ -93,6 +95,7 @@ private:
     Ref* main_;
     Ref* tmp_;
     TreeNode* nodes_;
+    std::deque<Bins> part_;  // big_level's bins, one per chunk
 
     Ref* refs(const Range& r) const { return r.in_tmp ? tmp_ : main_; }
 
@@ -270,7 +273,10 @@ private:
         std::vector<BinMap> maps;
         maps.reserve(L);
         for (const Range& r : level) maps.emplace_back(r.cbox, opt_.bins);
-        std::vector<Bins> part(C);
+        // Per chunk, reused from level to level: a Bins is 27 KB, and
+        // constructing one per chunk per level wrote megabytes for nothing.
+        if (part_.size() < C) part_.resize(C);  // a deque: the existing ones stay put
+        std::deque<Bins>& part = part_;
         each_chunk([&](std::size_t c) {
             const Chunk& ch = chunks[c];
             bin_refs(refs(level[ch.node]), ch.begin, ch.end, maps[ch.node], part[c]);
@@ -318,18 +324,9 @@ private:
             const Range& r = level[ch.node];
             const Ref* src = refs(r);
             Ref* dst = r.in_tmp ? main_ : tmp_;
-            std::uint32_t li = left_at[c], ri = right_at[c];
             Box4 lcb, rcb;
-            for (std::uint32_t k = ch.begin; k < ch.end; ++k) {
-                const F4 lo = load3(src[k].lo), hi = load3(src[k].hi), cen = centroid(lo, hi);
-                if (maps[ch.node].left_of(cen, sp.d.axis, sp.d.bin)) {
-                    dst[li++] = src[k];
-                    lcb.grow_point(cen);
-                } else {
-                    dst[ri++] = src[k];
-                    rcb.grow_point(cen);
-                }
-            }
+            scatter_refs_stable(src, dst, ch.begin, ch.end, left_at[c], right_at[c], maps[ch.node], sp.d.axis,
+                                sp.d.bin, lcb, rcb);
             lc[c] = lcb;
             rc[c] = rcb;
         });

@@ -222,31 +222,4 @@ void bin_refs(const Ref* r, std::uint32_t begin, std::uint32_t end, const BinMap
         bin_refs_portable(r, begin, end, map, bins);
 }
 
-std::uint32_t partition_refs(const Ref* src, Ref* dst, std::uint32_t begin, std::uint32_t end, const BinMap& map,
-                             int axis, int bin, Box4& lcb, Box4& rcb) {
-    // Every record is written at both cursors and only one advances: the
-    // other slot is overwritten later (Hoare-style, without the swap).
-    std::uint32_t l = begin, r = end - 1;
-    const F4 t = splat(float(bin + 1)), inf = splat(std::numeric_limits<float>::infinity()), ninf = splat(-std::numeric_limits<float>::infinity());
-    F4 llo = inf, lhi = ninf, rlo = inf, rhi = ninf;
-    for (std::uint32_t i = begin; i < end; ++i) {
-        const F4 lo = load3(src[i].lo), hi = load3(src[i].hi), c = centroid(lo, hi);
-        const bool right = (ge_mask((c - map.lo) * map.scale, t) >> axis) & 1;
-        const F4 m = lane_mask(right);
-        dst[l] = src[i];
-        dst[r] = src[i];
-        l += !right;
-        r -= right;
-        llo = min4(llo, select4(m, inf, c));
-        lhi = max4(lhi, select4(m, ninf, c));
-        rlo = min4(rlo, select4(m, c, inf));
-        rhi = max4(rhi, select4(m, c, ninf));
-    }
-    lcb.lo = llo;
-    lcb.hi = lhi;
-    rcb.lo = rlo;
-    rcb.hi = rhi;
-    return l;
-}
-
 }  // namespace clpath::bvh_build

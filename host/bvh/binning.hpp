@@ -95,12 +95,4 @@ void bin_refs_sparse(const Ref* r, std::uint32_t begin, std::uint32_t end, const
 // (a node over two triangles is the commonest kind).
 void bin_refs_pair(const Ref* r, std::uint32_t begin, const BinMap& map, Bins& b, BinList* lists);
 
-// Records [begin, end) of src into dst: those whose centroid's bin on axis
-// is <= bin to the front, in order, the others to the back, in reverse order.
-// Returns where the back starts; lcb, rcb: the two sides' centroid bounds.
-// Without a branch per record, where an in-place partition mispredicts
-// about every other record.
-std::uint32_t partition_refs(const Ref* src, Ref* dst, std::uint32_t begin, std::uint32_t end, const BinMap& map,
-                             int axis, int bin, Box4& lcb, Box4& rcb);
-
 }  // namespace clpath::bvh_build
