@@ -1,5 +1,6 @@
 #include "bvh/partition.hpp"
 
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
@@ -59,11 +60,10 @@ __attribute__((target("avx"), always_inline)) inline __m256 blend(__m256 a, __m2
 // the same SSE operations as centroid() and BinMap's, without FMA (target
 // avx alone), so every record goes to the same side. noipa: GCC otherwise
 // clones it into its callers and schedules the clone worse.
-__attribute__((target("avx"), noipa)) std::uint32_t partition_avx(const Ref* src, Ref* dst, std::uint32_t begin,
-                                                                   std::uint32_t end, std::uint32_t left_at,
-                                                                   std::uint32_t right_at, std::uint32_t right_step,
-                                                                   const BinMap& map, int axis, int bin, Box4& lcb,
-                                                                   Box4& rcb) {
+template <bool Stream>
+__attribute__((target("avx"), always_inline)) inline std::uint32_t partition_avx_loop(
+    const Ref* src, Ref* dst, std::uint32_t begin, std::uint32_t end, std::uint32_t left_at, std::uint32_t right_at,
+    std::uint32_t right_step, const BinMap& map, int axis, int bin, Box4& lcb, Box4& rcb) {
     static_assert(sizeof(Ref) == 32, "a record is one 256-bit value");
     const __m256 keep6 = _mm256_castsi256_ps(_mm256_setr_epi32(-1, -1, -1, 0, -1, -1, -1, 0));
     const __m256 flip_hi = _mm256_setr_ps(0.0f, 0.0f, 0.0f, 0.0f, -0.0f, -0.0f, -0.0f, -0.0f);
@@ -84,7 +84,10 @@ __attribute__((target("avx"), noipa)) std::uint32_t partition_avx(const Ref* src
         const __m128 ge = _mm_cmpge_ps(_mm_mul_ps(_mm_sub_ps(c, mlo), mscale), t);
         const std::uint32_t right = std::uint32_t(_mm_movemask_ps(ge) >> axis) & 1u;
         const std::uint32_t all = 0u - right;
-        _mm256_storeu_ps(dst[l + ((r - l) & all)].lo, f);
+        if constexpr (Stream)
+            _mm256_stream_ps(dst[l + ((r - l) & all)].lo, f);
+        else
+            _mm256_storeu_ps(dst[l + ((r - l) & all)].lo, f);
         l += 1u - right;
         r += right_step & all;
         const __m128 m4 = _mm_permutevar_ps(ge, pick);
@@ -100,11 +103,27 @@ __attribute__((target("avx"), noipa)) std::uint32_t partition_avx(const Ref* src
     lcb.hi = load4(out + 4);
     rcb.lo = load4(out + 8);
     rcb.hi = load4(out + 12);
+    if constexpr (Stream) _mm_sfence();  // the streaming stores ordered before the threads' join
     return l;
+}
+
+// Streaming (non-temporal) stores where asked and dst is 32-byte aligned:
+// a big node's scatter writes tens of megabytes that the next pass reads
+// from memory anyway, so a normal store's read of each line before writing
+// it (and the lines it evicts from the cache) is wasted traffic.
+// noipa: GCC otherwise clones it into its callers and schedules the clone worse.
+__attribute__((target("avx"), noipa)) std::uint32_t partition_avx(const Ref* src, Ref* dst, std::uint32_t begin,
+                                                                   std::uint32_t end, std::uint32_t left_at,
+                                                                   std::uint32_t right_at, std::uint32_t right_step,
+                                                                   const BinMap& map, int axis, int bin, Box4& lcb,
+                                                                   Box4& rcb, bool stream) {
+    if (stream && (reinterpret_cast<std::uintptr_t>(dst) & 31) == 0)
+        return partition_avx_loop<true>(src, dst, begin, end, left_at, right_at, right_step, map, axis, bin, lcb, rcb);
+    return partition_avx_loop<false>(src, dst, begin, end, left_at, right_at, right_step, map, axis, bin, lcb, rcb);
 }
 #else
 std::uint32_t partition_avx(const Ref*, Ref*, std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t,
-                            std::uint32_t, const BinMap&, int, int, Box4&, Box4&) {
+                            std::uint32_t, const BinMap&, int, int, Box4&, Box4&, bool) {
     throw std::logic_error("partition_avx: no AVX path in this build");
 }
 #endif
@@ -112,8 +131,9 @@ std::uint32_t partition_avx(const Ref*, Ref*, std::uint32_t, std::uint32_t, std:
 namespace {
 std::uint32_t partition(const Ref* src, Ref* dst, std::uint32_t begin, std::uint32_t end, std::uint32_t left_at,
                         std::uint32_t right_at, std::uint32_t right_step, const BinMap& map, int axis, int bin,
-                        Box4& lcb, Box4& rcb) {
-    return avx_available() ? partition_avx(src, dst, begin, end, left_at, right_at, right_step, map, axis, bin, lcb, rcb)
+                        Box4& lcb, Box4& rcb, bool stream) {
+    return avx_available() ? partition_avx(src, dst, begin, end, left_at, right_at, right_step, map, axis, bin, lcb, rcb,
+                                           stream)
                            : partition_portable(src, dst, begin, end, left_at, right_at, right_step, map, axis, bin,
                                                 lcb, rcb);
 }
@@ -121,12 +141,12 @@ std::uint32_t partition(const Ref* src, Ref* dst, std::uint32_t begin, std::uint
 
 std::uint32_t partition_refs(const Ref* src, Ref* dst, std::uint32_t begin, std::uint32_t end, const BinMap& map,
                              int axis, int bin, Box4& lcb, Box4& rcb) {
-    return partition(src, dst, begin, end, begin, end - 1, ~0u, map, axis, bin, lcb, rcb);
+    return partition(src, dst, begin, end, begin, end - 1, ~0u, map, axis, bin, lcb, rcb, false);
 }
 
 void scatter_refs_stable(const Ref* src, Ref* dst, std::uint32_t begin, std::uint32_t end, std::uint32_t left_at,
                          std::uint32_t right_at, const BinMap& map, int axis, int bin, Box4& lcb, Box4& rcb) {
-    partition(src, dst, begin, end, left_at, right_at, 1u, map, axis, bin, lcb, rcb);
+    partition(src, dst, begin, end, left_at, right_at, 1u, map, axis, bin, lcb, rcb, true);
 }
 
 }  // namespace clpath::bvh_build

@@ -21,7 +21,7 @@ std::uint32_t partition_refs(const Ref* src, Ref* dst, std::uint32_t begin, std:
 // A stable partition of records [begin, end) of src: those whose centroid's
 // bin on axis is <= bin to dst[left_at ...], the others to dst[right_at ...],
 // both in order; writes nothing else of dst (a big node's chunks scatter at
-// once into neighbouring ranges). lcb, rcb: the two sides' centroid bounds.
+// once into neighbouring ranges). For the big nodes: streaming stores. lcb, rcb: the two sides' centroid bounds.
 void scatter_refs_stable(const Ref* src, Ref* dst, std::uint32_t begin, std::uint32_t end, std::uint32_t left_at,
                          std::uint32_t right_at, const BinMap& map, int axis, int bin, Box4& lcb, Box4& rcb);
 
@@ -31,9 +31,10 @@ void scatter_refs_stable(const Ref* src, Ref* dst, std::uint32_t begin, std::uin
 std::uint32_t partition_portable(const Ref* src, Ref* dst, std::uint32_t begin, std::uint32_t end,
                                  std::uint32_t left_at, std::uint32_t right_at, std::uint32_t right_step,
                                  const BinMap& map, int axis, int bin, Box4& lcb, Box4& rcb);
-// Only where avx_available().
+// Only where avx_available(). stream: with non-temporal stores (where dst
+// is 32-byte aligned), for scatters far larger than the caches.
 std::uint32_t partition_avx(const Ref* src, Ref* dst, std::uint32_t begin, std::uint32_t end, std::uint32_t left_at,
                             std::uint32_t right_at, std::uint32_t right_step, const BinMap& map, int axis, int bin,
-                            Box4& lcb, Box4& rcb);
+                            Box4& lcb, Box4& rcb, bool stream = false);
 
 }  // namespace clpath::bvh_build

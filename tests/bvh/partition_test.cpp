@@ -5,7 +5,9 @@
 // outside its two ranges.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -68,6 +70,16 @@ Expected reference(const std::vector<Ref>& refs, std::uint32_t begin, std::uint3
     return e;
 }
 
+// n copies of fill, 64-byte aligned (so the streaming stores are taken).
+struct FreeDeleter {
+    void operator()(Ref* p) const { std::free(p); }
+};
+std::unique_ptr<Ref[], FreeDeleter> aligned_refs(std::size_t n, const Ref& fill) {
+    Ref* p = static_cast<Ref*>(std::aligned_alloc(64, (n * sizeof(Ref) + 63) / 64 * 64));
+    for (std::size_t i = 0; i < n; ++i) p[i] = fill;
+    return std::unique_ptr<Ref[], FreeDeleter>(p);
+}
+
 bool same_ref(const Ref& a, const Ref& b) { return std::memcmp(&a, &b, sizeof(Ref)) == 0; }
 
 using Engine = std::uint32_t (*)(const Ref*, Ref*, std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t,
@@ -86,9 +98,9 @@ void check_engine(Engine engine) {
                         const Expected e = reference(refs, begin, end, map, axis, bin);
                         const std::uint32_t nl = std::uint32_t(e.left.size());
                         // Reverse order at the back, as partition_refs.
-                        std::vector<Ref> dst(refs.size() + 2, sentinel);
+                        const auto dst = aligned_refs(refs.size() + 2, sentinel);
                         Box4 lcb, rcb;
-                        const std::uint32_t m = engine(refs.data(), dst.data() + 1, begin, end, begin, end - 1, ~0u,
+                        const std::uint32_t m = engine(refs.data(), dst.get() + 1, begin, end, begin, end - 1, ~0u,
                                                        map, axis, bin, lcb, rcb);
                         ASSERT_EQ(m, begin + nl);
                         for (std::uint32_t k = 0; k < nl; ++k) EXPECT_TRUE(same_ref(dst[1 + begin + k], e.left[k]));
@@ -100,8 +112,8 @@ void check_engine(Engine engine) {
                         if (!e.right.empty()) expect_bitwise(rcb, e.rcb);
                         // Stable, into two ranges apart with guards around each.
                         const std::uint32_t la = 1, ra = nl + 3;
-                        std::vector<Ref> out(nl + e.right.size() + 5, sentinel);
-                        engine(refs.data(), out.data(), begin, end, la, ra, 1u, map, axis, bin, lcb, rcb);
+                        const auto out = aligned_refs(nl + e.right.size() + 5, sentinel);
+                        engine(refs.data(), out.get(), begin, end, la, ra, 1u, map, axis, bin, lcb, rcb);
                         for (std::uint32_t k = 0; k < nl; ++k) EXPECT_TRUE(same_ref(out[la + k], e.left[k]));
                         for (std::size_t k = 0; k < e.right.size(); ++k) EXPECT_TRUE(same_ref(out[ra + k], e.right[k]));
                         for (std::size_t k : {std::size_t(0), std::size_t(la + nl), std::size_t(la + nl + 1),
@@ -118,7 +130,20 @@ TEST(Partition, PortableMatchesTheReference) { check_engine(partition_portable);
 
 TEST(Partition, AvxMatchesTheReference) {
     if (!avx_available()) GTEST_SKIP() << "no AVX on this CPU";
-    check_engine(partition_avx);
+    check_engine([](const Ref* src, Ref* dst, std::uint32_t begin, std::uint32_t end, std::uint32_t left_at,
+                    std::uint32_t right_at, std::uint32_t step, const BinMap& map, int axis, int bin, Box4& lcb,
+                    Box4& rcb) {
+        return partition_avx(src, dst, begin, end, left_at, right_at, step, map, axis, bin, lcb, rcb, false);
+    });
+}
+
+TEST(Partition, AvxStreamingMatchesTheReference) {
+    if (!avx_available()) GTEST_SKIP() << "no AVX on this CPU";
+    check_engine([](const Ref* src, Ref* dst, std::uint32_t begin, std::uint32_t end, std::uint32_t left_at,
+                    std::uint32_t right_at, std::uint32_t step, const BinMap& map, int axis, int bin, Box4& lcb,
+                    Box4& rcb) {
+        return partition_avx(src, dst, begin, end, left_at, right_at, step, map, axis, bin, lcb, rcb, true);
+    });
 }
 
 TEST(Partition, DispatchedEntryPointsMatchTheEngines) {
