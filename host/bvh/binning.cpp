@@ -150,62 +150,66 @@ bool avx_available() {
 // its second operand on ties, as minps does, so the bins equal
 // bin_refs_portable's bit for bit (signed zeros too). The centroid and bin
 // index are the same SSE operations as BinMap's, so the partition agrees.
-__attribute__((target("avx"))) void bin_refs_avx(const Ref* r, std::uint32_t begin, std::uint32_t end,
-                                                   const BinMap& map, Bins& bins) {
+//
+// Both sets of bins, boxes and counts, live in this function's frame, so
+// every update addresses them from the stack pointer and a bin's byte offset
+// (no base pointers to keep in registers: GCC spilled and reloaded the
+// twelve of them per record), with the bin indices zero-extended (unsigned)
+// rather than sign-extended. The result is copied into bins at the end.
+// noipa: GCC otherwise clones it into its callers and schedules the clone worse.
+__attribute__((target("avx"), noipa)) void bin_refs_avx(const Ref* r, std::uint32_t begin, std::uint32_t end,
+                                                          const BinMap& map, Bins& bins) {
     const __m256 keep6 = _mm256_castsi256_ps(_mm256_setr_epi32(-1, -1, -1, 0, -1, -1, -1, 0));
     const __m256 flip_lo = _mm256_setr_ps(-0.0f, -0.0f, -0.0f, -0.0f, 0.0f, 0.0f, 0.0f, 0.0f);
-    float* box[3] = {reinterpret_cast<float*>(bins.box[0]), reinterpret_cast<float*>(bins.box[1]),
-                     reinterpret_cast<float*>(bins.box[2])};
     static_assert(sizeof(Box4) == 32, "a bin's box is lo then hi, 8 floats");
-    std::uint32_t* c[3] = {bins.count[0], bins.count[1], bins.count[2]};
-    std::uint32_t *c0 = c[0], *c1 = c[1], *c2 = c[2];
     alignas(16) float m[12];
     store4(m, map.lo);
     store4(m + 4, map.scale);
     store4(m + 8, map.top);
     const __m128 mlo = _mm_load_ps(m), mscale = _mm_load_ps(m + 4), mtop = _mm_load_ps(m + 8);
     const __m128 half = _mm_set1_ps(0.5f);
-    alignas(32) float aux[3][8 * kMaxBins];
-    std::uint32_t aux_count[3][kMaxBins];
+    // [set][axis][bin]: set 1 takes every other record from kTwoSetsFrom on.
+    alignas(32) float box[2][3][kMaxBins][8];
+    std::uint32_t count[2][3][kMaxBins];
     const __m256 empty = _mm256_set1_ps(-std::numeric_limits<float>::infinity());  // a negated empty box
-    for (int a = 0; a < 3; ++a)
-        for (int k = 0; k < map.bins; ++k) {
-            _mm256_store_ps(aux[a] + 8 * k, empty);
-            _mm256_storeu_ps(box[a] + 8 * k, empty);
-            aux_count[a][k] = 0;
-            c[a][k] = 0;
-        }
-    auto put = [&](std::uint32_t i, float* b0, float* b1, float* b2, std::uint32_t* n0, std::uint32_t* n1,
-                   std::uint32_t* n2) __attribute__((target("avx"))) {
+    for (int set = 0; set < 2; ++set)
+        for (int a = 0; a < 3; ++a)
+            for (int k = 0; k < map.bins; ++k) {
+                _mm256_store_ps(box[set][a][k], empty);
+                count[set][a][k] = 0;
+            }
+    auto put = [&](std::uint32_t i, int set) __attribute__((target("avx"), always_inline)) {
         const __m256 f = _mm256_and_ps(_mm256_loadu_ps(r[i].lo), keep6);
         const __m128 lo = _mm256_castps256_ps128(f), hi = _mm256_extractf128_ps(f, 1);
         const __m128 c = _mm_add_ps(_mm_mul_ps(lo, half), _mm_mul_ps(hi, half));
         const __m128 x = _mm_mul_ps(_mm_sub_ps(c, mlo), mscale);
         const __m128i k = _mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(x, _mm_setzero_ps()), mtop));
-        const int k0 = _mm_cvtsi128_si32(k), k1 = _mm_extract_epi32(k, 1), k2 = _mm_extract_epi32(k, 2);
+        // In [0, bins): unsigned, so the addressing needs no sign extension.
+        const std::uint32_t k0 = std::uint32_t(_mm_cvtsi128_si32(k)), k1 = std::uint32_t(_mm_extract_epi32(k, 1)),
+                            k2 = std::uint32_t(_mm_extract_epi32(k, 2));
         const __m256 g = _mm256_xor_ps(f, flip_lo);
-        float* p0 = b0 + 8 * k0;
-        float* p1 = b1 + 8 * k1;
-        float* p2 = b2 + 8 * k2;
-        _mm256_storeu_ps(p0, _mm256_max_ps(_mm256_loadu_ps(p0), g));
-        ++n0[k0];
-        _mm256_storeu_ps(p1, _mm256_max_ps(_mm256_loadu_ps(p1), g));
-        ++n1[k1];
-        _mm256_storeu_ps(p2, _mm256_max_ps(_mm256_loadu_ps(p2), g));
-        ++n2[k2];
+        float* p0 = box[set][0][k0];
+        float* p1 = box[set][1][k1];
+        float* p2 = box[set][2][k2];
+        _mm256_store_ps(p0, _mm256_max_ps(_mm256_load_ps(p0), g));
+        ++count[set][0][k0];
+        _mm256_store_ps(p1, _mm256_max_ps(_mm256_load_ps(p1), g));
+        ++count[set][1][k1];
+        _mm256_store_ps(p2, _mm256_max_ps(_mm256_load_ps(p2), g));
+        ++count[set][2][k2];
     };
     std::uint32_t i = begin;
     if (end - begin >= kTwoSetsFrom)
         for (; i + 1 < end; i += 2) {
-            put(i, box[0], box[1], box[2], c0, c1, c2);
-            put(i + 1, aux[0], aux[1], aux[2], aux_count[0], aux_count[1], aux_count[2]);
+            put(i, 0);
+            put(i + 1, 1);
         }
-    for (; i < end; ++i) put(i, box[0], box[1], box[2], c0, c1, c2);
+    for (; i < end; ++i) put(i, 0);
     for (int a = 0; a < 3; ++a)
         for (int k = 0; k < map.bins; ++k) {
-            const __m256 merged = _mm256_max_ps(_mm256_loadu_ps(box[a] + 8 * k), _mm256_load_ps(aux[a] + 8 * k));
-            _mm256_storeu_ps(box[a] + 8 * k, _mm256_xor_ps(merged, flip_lo));
-            bins.count[a][k] += aux_count[a][k];
+            const __m256 merged = _mm256_max_ps(_mm256_load_ps(box[0][a][k]), _mm256_load_ps(box[1][a][k]));
+            _mm256_storeu_ps(reinterpret_cast<float*>(&bins.box[a][k]), _mm256_xor_ps(merged, flip_lo));
+            bins.count[a][k] = count[0][a][k] + count[1][a][k];
         }
 }
 #else
