@@ -95,6 +95,14 @@ print(f"{sys.argv[2]},{sys.argv[3]},{sys.argv[4]},clpath_render,{rays / s * 1e-6
 PY
 }
 
+# PoCL compiles a kernel at its first launch for each work-group and grid
+# size, inside the render's time, and keeps it in its cache: one untimed
+# one-sample render at full size first, as the pathtracer's warm-up frame and
+# bench path's warm-up launch are untimed.
+echo "== warm-up: one untimed clpath render (PoCL's kernel cache)" | tee -a "$LOG"
+"$CLPATH" render "$SCENE" --width "$SIZE" --height "$SIZE" --spp 1 --max-depth "$DEPTH" --rr none \
+  -o "$WORK/warm.exr" "${DEV[@]}" >> "$LOG" 2>&1
+
 steps=(run_pathtracer run_bench_path run_render)
 for round in $(seq 1 "$ROUNDS"); do
   for k in 0 1 2; do
@@ -142,7 +150,8 @@ add(f"- Scene: `{scene}` at {size}x{size}, {spp} samples per pixel, depth {depth
     "so its rays per sample are a little higher.")
 add("- clpath: `clpath bench path SCENE --spp S --max-depth D --rounds 1` (clpath's renderer and the built-in "
     "Embree path tracer, host/bench/embree_path_tracer.cpp, in Embree's default mode and robust) and "
-    "`clpath render SCENE --spp S --max-depth D --rr none` (Mrays/s from its summary: rays / render_s).")
+    "`clpath render SCENE --spp S --max-depth D --rr none` (Mrays/s from its summary: rays / render_s), after "
+    "one untimed one-sample render, as PoCL compiles a kernel at its first launch and caches it.")
 add("- Commands and every run's output: `benchmarks/path_embree/pathtracer.sh`, `log.txt`, `runs.csv`.")
 add("")
 add("| tracer | Mrays/s | Msamples/s | rays per sample | / Embree's pathtracer (Mrays/s) |")

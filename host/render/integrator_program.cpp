@@ -327,27 +327,44 @@ void IntegratorProgram::add_samples(const DeviceScene& scene, Film& film, const 
     // every pixel is already too much (a 16384^2 film at depth 1024), by bands.
     const double max_work = double(0xffffffffu) / double(max_rays_per_sample(settings_));
     const auto t0 = std::chrono::steady_clock::now();
+    // Pixels per launch of one sample each that take about the target time
+    // (all of them where a whole frame takes less), from the measured speed.
+    auto one_sample_band = [&](double target) {
+        if (seconds_per_pixel_sample_ * all <= target) return all;
+        const auto b = std::uint32_t(std::clamp(target / seconds_per_pixel_sample_, double(kWorkGroup), double(all)));
+        return std::max<std::uint32_t>(kWorkGroup, b / kWorkGroup * kWorkGroup);
+    };
+    // What every band obeys: the wavefront's path state, the 32-bit ray counter.
+    auto capped = [&](std::uint32_t band, std::uint32_t samples) {
+        if (shape_ == KernelShape::Wavefront && band > kWavefrontPaths) band = kWavefrontPaths;
+        if (double(band) * samples > max_work)
+            band = std::max<std::uint32_t>(kWorkGroup, std::uint32_t(max_work / samples) / kWorkGroup * kWorkGroup);
+        return band;
+    };
     while (n > 0) {
         const double target = settings_.target_launch_seconds;
         std::uint32_t samples = 1, band = all;
-        if (seconds_per_pixel_sample_ <= 0) {
+        const bool measuring = seconds_per_pixel_sample_ <= 0;
+        if (measuring) {
             band = std::min<std::uint32_t>(all, 16384);  // first launch: small, to measure
+        } else if (seconds_per_pixel_sample_ * all > target) {
+            band = one_sample_band(target);
         } else {
-            const double per_frame = seconds_per_pixel_sample_ * all;
-            if (per_frame > target) {
-                band = std::uint32_t(std::clamp(target / seconds_per_pixel_sample_, double(kWorkGroup), double(all)));
-                band = std::max<std::uint32_t>(kWorkGroup, band / kWorkGroup * kWorkGroup);
-            } else {
-                samples = std::uint32_t(std::clamp(target / per_frame, 1.0, double(n)));
-            }
+            samples = std::uint32_t(std::clamp(target / (seconds_per_pixel_sample_ * all), 1.0, double(n)));
         }
-        if (shape_ == KernelShape::Wavefront && band > kWavefrontPaths) band = kWavefrontPaths;
         samples = std::uint32_t(std::min<double>(samples, std::max(1.0, max_work / all)));
-        if (double(band) * samples > max_work)
-            band = std::max<std::uint32_t>(kWorkGroup, std::uint32_t(max_work / samples) / kWorkGroup * kWorkGroup);
-        for (std::uint32_t first = 0; first < all; first += band) {
-            launch_band(scene, film, cam, first, std::min(band, all - first), samples);
-            if (seconds_per_pixel_sample_ <= 0) drain();  // the first launch measures the next ones' size
+        band = capped(band, samples);
+        for (std::uint32_t first = 0; first < all;) {
+            const std::uint32_t count = std::min(band, all - first);
+            launch_band(scene, film, cam, first, count, samples);
+            first += count;
+            if (measuring && seconds_per_pixel_sample_ <= 0) {
+                // The first launch sizes the rest of this pass's launches:
+                // the pass does not go on in launches of the measuring size
+                // (16 of them over 512x512), small enough to run slower.
+                drain();
+                band = capped(one_sample_band(target), samples);
+            }
         }
         film.count_samples(samples);
         n -= samples;

@@ -137,6 +137,24 @@ TEST(Accumulation, LaunchesKeepTheRayCounterBelow32Bits) {
     EXPECT_GE(stats.launches, 1 + (rest + per_launch - 1) / per_launch);
 }
 
+// The first launch is small (16384 pixels), to measure the device; the rest
+// of that first pass is sized from the measurement. With a time target no
+// launch reaches, one more launch finishes a 256x256 frame, not three more of
+// the measuring size (each of which was waited for).
+TEST(Accumulation, FirstPassGoesOnInLaunchesSizedByTheMeasurement) {
+    Scene s = glowing_box(glm::vec3(1));
+    s.camera.width = s.camera.height = 256;
+    RenderSettings st;
+    st.max_depth = 0;
+    st.rr_rule = CLP_RR_NONE;
+    st.target_launch_seconds = 1e9;
+    RenderStats stats;
+    const auto img = test::render(s, st, 1, &stats).linear;
+    EXPECT_EQ(stats.launches, 2u);
+    EXPECT_EQ(stats.rays, 256u * 256u) << "every pixel traced once";
+    for (float v : img.rgb) ASSERT_EQ(v, 1.0f) << "every pixel sees the glowing wall";
+}
+
 TEST(Accumulation, SampleCountBeyondTheIndexIsRefused) {
     RenderSettings st;
     st.max_depth = 0;
