@@ -140,7 +140,7 @@ TEST(Accumulation, LaunchesKeepTheRayCounterBelow32Bits) {
 // The first launch is small (16384 pixels), to measure the device; the rest
 // of that first pass is sized from the measurement. With a time target no
 // launch reaches, one more launch finishes a 256x256 frame, not three more of
-// the measuring size (each of which was waited for).
+// the measuring size (PoCL runs launches that small more slowly per pixel).
 TEST(Accumulation, FirstPassGoesOnInLaunchesSizedByTheMeasurement) {
     Scene s = glowing_box(glm::vec3(1));
     s.camera.width = s.camera.height = 256;
