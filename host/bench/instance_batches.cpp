@@ -89,7 +89,7 @@ struct DeviceTracer {
     Kernel closest, any;
 };
 
-DeviceTracer device_tracer(Context& ctx, const std::vector<unsigned char>& node_bytes, const std::vector<TriVerts>& tris,
+DeviceTracer device_tracer(Context& ctx, const std::vector<unsigned char>& node_bytes, const BvhTriangles& tris,
                            const ProgramSpec& spec) {
     DeviceTracer d{ctx.buffer(node_bytes.size(), CL_MEM_READ_ONLY, "acceleration nodes", node_bytes.data()),
                    ctx.buffer(tris.size() * sizeof(TriVerts), CL_MEM_READ_ONLY, "triangles", tris.data()),

@@ -56,7 +56,7 @@ std::string mismatch_report(std::size_t i, const BatchRay& r, std::int64_t dev_p
     return buf;
 }
 
-BatchAgreement check_closest(const Bvh& reference, const std::vector<TriVerts>& device_tris,
+BatchAgreement check_closest(const Bvh& reference, const BvhTriangles& device_tris,
                              const std::vector<BatchRay>& rays, const std::vector<Hit>& hits, std::size_t check) {
     const auto idx = checked_rays(rays.size(), check);
     std::vector<CpuHit> cpu(idx.size());
@@ -116,7 +116,7 @@ BatchAgreement check_any(const Bvh& reference, const std::vector<BatchRay>& rays
 
 // Embree's answers in the device's form (Hit.tri indexes the leaf-ordered
 // triangles), so check_closest and check_any judge both the same way.
-std::vector<std::uint32_t> leaf_index_of_prim(const std::vector<TriVerts>& tris) {
+std::vector<std::uint32_t> leaf_index_of_prim(const BvhTriangles& tris) {
     std::vector<std::uint32_t> at(tris.size());
     for (std::size_t i = 0; i < tris.size(); ++i) at[tris[i].prim] = std::uint32_t(i);
     return at;
@@ -129,7 +129,7 @@ void take_timing(EmbreeBatch& e, const EmbreeTiming& t) {
     e.mrays_per_s = t.mrays_per_s;
 }
 
-EmbreeBatch embree_closest(EmbreeBaseline& embree, const Bvh& reference, const std::vector<TriVerts>& tris,
+EmbreeBatch embree_closest(EmbreeBaseline& embree, const Bvh& reference, const BvhTriangles& tris,
                            const std::vector<std::uint32_t>& leaf_of, const std::vector<BatchRay>& rays,
                            const RayBenchOptions& o) {
     std::vector<std::int64_t> prim;

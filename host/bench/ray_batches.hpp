@@ -53,7 +53,7 @@ struct RayBenchOptions {
     // (source and build options) and the node and triangle buffers they
     // traverse (for --save-rays: bench/ray_files.hpp). May be empty.
     std::function<void(const std::string& source, const std::string& options, const std::vector<unsigned char>& nodes,
-                       const std::vector<TriVerts>& triangles)>
+                       const BvhTriangles& triangles)>
         on_structure;
 };
 

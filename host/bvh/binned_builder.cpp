@@ -368,6 +368,61 @@ private:
         }
     }
 
+    // A node over two records (the commonest kind), decided and split
+    // without bins, sweeps or a partition pass, into the tree decide() and
+    // partition_refs give: its one possible split puts each record in a leaf
+    // of its own. Every axis that tells the two apart prices it the same
+    // (area + area, a sum that does not depend on the order), so the sweep's
+    // first-of-equal-costs rule picks the first such axis, and the record in
+    // its lower bin goes left. False (nothing done) where leaves must hold
+    // single records: decide() may split at the median then.
+    bool pair(const Range& r, std::size_t& leaf_count) {
+        if (opt_.max_leaf_size < 2) return false;
+        const Ref* a = refs(r);
+        const Ref p = a[r.begin], q = a[r.begin + 1];
+        const F4 plo = load3(p.lo), phi = load3(p.hi), qlo = load3(q.lo), qhi = load3(q.hi);
+        int axis = -1, kp[3], kq[3];
+        if (!force_median(r)) {
+            const BinMap map(r.cbox, opt_.bins);
+            bin_index3((centroid(plo, phi) - map.lo) * map.scale, map.top, kp[0], kp[1], kp[2]);
+            bin_index3((centroid(qlo, qhi) - map.lo) * map.scale, map.top, kq[0], kq[1], kq[2]);
+            const F4 ext = r.cbox.hi - r.cbox.lo;
+            for (int ax = 0; ax < 3 && axis < 0; ++ax)
+                if (lane(ext, ax) > 0 && kp[ax] != kq[ax]) axis = ax;
+        }
+        if (axis >= 0) {
+            const float cost = area_of_extent(phi - plo) + area_of_extent(qhi - qlo);
+            const float node_area = area(r.box);
+            const float split_cost = opt_.traversal_cost + (node_area > 0 ? cost / node_area : 0.0f);
+            if (!(cost < std::numeric_limits<float>::infinity()) || 2.0f <= split_cost) axis = -1;
+        }
+        if (axis < 0) {
+            leaf(r);
+            ++leaf_count;
+            return true;
+        }
+        const bool swap = kq[axis] < kp[axis];
+        const Ref& left = swap ? q : p;
+        const Ref& right = swap ? p : q;
+        main_[r.begin] = left;
+        main_[r.begin + 1] = right;
+        interior(r, r.begin + 1);
+        single_leaf(r.slot + 1, left, r.begin);
+        single_leaf(r.slot + 2, right, r.begin + 1);
+        leaf_count += 2;
+        return true;
+    }
+
+    void single_leaf(std::uint32_t slot, const Ref& rec, std::uint32_t at) {
+        TreeNode& n = nodes_[slot];
+        for (int ax = 0; ax < 3; ++ax) {
+            n.lo[ax] = rec.lo[ax];
+            n.hi[ax] = rec.hi[ax];
+        }
+        n.link = at;
+        n.count = 1;
+    }
+
     // A whole subtree on one thread: depth first, each SAH partition scattered
     // into the other array (a median split stays in place). Returns its leaf count.
     std::size_t subtree(const Range& root, Bins& bins) {
@@ -386,6 +441,7 @@ private:
                 ++leaf_count;
                 continue;
             }
+            if (n == 2 && pair(r, leaf_count)) continue;
             const BinMap map(r.cbox, opt_.bins);
             const Decision d = decide(
                 r,

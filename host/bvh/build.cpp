@@ -54,25 +54,36 @@ int flatten_from(const TreeNode* tree, std::uint32_t root, int depth, int first,
     int sp = 0;
     stack[sp++] = {root, first, depth};
     int next = first + 1;
+    // Sums in locals: through st, every node's store and reload would chain
+    // (st might alias out for all the compiler knows).
+    double cost = st.cost;
+    std::size_t leaves = st.leaves;
+    int max_depth = st.max_depth;
     while (sp > 0) {
         const Item it = stack[--sp];
         const TreeNode& b = tree[it.slot];
-        st.cost += traversal_cost * node_area(b) / root_area;
-        st.max_depth = std::max(st.max_depth, it.depth);
+        cost += traversal_cost * node_area(b) / root_area;
+        max_depth = std::max(max_depth, it.depth);
         const std::uint32_t kids[2] = {it.slot + 1, b.link};
         for (int s = 0; s < 2; ++s) {
             const TreeNode& c = tree[kids[s]];
             int index = 0;
             if (c.count) {
-                ++st.leaves;
-                st.cost += double(c.count) * node_area(c) / root_area;
+                ++leaves;
+                cost += double(c.count) * node_area(c) / root_area;
             } else if ((index = offset_of(kids[s])) < 0) {
                 index = next++;
                 stack[sp++] = {kids[s], index, it.depth + 1};
+                // Its right child lies far ahead in the tree's slots: fetch it
+                // now, as its parent will be visited soon (the right one next).
+                __builtin_prefetch(&tree[c.link]);
             }
             set_slot(out[it.node], s, c, index);
         }
     }
+    st.cost = cost;
+    st.leaves = leaves;
+    st.max_depth = max_depth;
     return next;
 }
 
@@ -182,6 +193,7 @@ Bvh build_bvh(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& opt
             for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
                 TriVerts& tv = bvh.triangles[i];
                 const std::size_t s = refs[i].prim;
+                if (i + 8 < n) __builtin_prefetch(&vertices[3 * std::size_t(refs[i + 8].prim)]);
                 for (int a = 0; a < 3; ++a) {
                     tv.v0[a] = vertices[3 * s][a];
                     tv.v1[a] = vertices[3 * s + 1][a];

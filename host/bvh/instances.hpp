@@ -36,7 +36,7 @@ struct TwoLevelBvh {
     // The top level from node 0, then the instance records, then each mesh's
     // bottom level (child indices and leaf ranges offset into these buffers).
     std::vector<Bvh4Node128> nodes;
-    std::vector<TriVerts> triangles;  // each mesh's in leaf order; .prim = first_prim[mesh] + its index in the mesh
+    BvhTriangles triangles;  // each mesh's in leaf order; .prim = first_prim[mesh] + its index in the mesh
     std::vector<BvhStats> mesh_stats;  // each bottom level's, as build_bvh gives them
     TwoLevelStats stats;
 };

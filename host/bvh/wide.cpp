@@ -30,7 +30,7 @@ Slot slot_of(const BvhNode64& n, int s) {
 }
 
 // Replaces slots[k] (interior) by its binary node's children; returns the new count.
-int expand(const std::vector<BvhNode64>& binary, Slot* slots, int n, int k) {
+int expand(const BvhNodes& binary, Slot* slots, int n, int k) {
     const std::size_t c = std::size_t(slots[k].child);
     if (c >= binary.size()) throw std::invalid_argument("binary BVH: child index out of range");
     slots[k] = slot_of(binary[c], 0);
@@ -40,7 +40,7 @@ int expand(const std::vector<BvhNode64>& binary, Slot* slots, int n, int k) {
 
 // The collapse under one rule. LargestFirst gives up (an empty vector) as
 // soon as a node would lie deeper than CLP_BVH4_MAX_DEPTH.
-std::vector<Bvh4Node128> widen(const std::vector<BvhNode64>& binary, WideningRule rule) {
+std::vector<Bvh4Node128> widen(const BvhNodes& binary, WideningRule rule) {
     std::vector<Bvh4Node128> wide(1);
     wide.reserve(binary.size() / 2 + 1);
     struct Item {
@@ -98,7 +98,7 @@ std::vector<Bvh4Node128> widen(const std::vector<BvhNode64>& binary, WideningRul
 
 }  // namespace
 
-std::vector<Bvh4Node128> widen_bvh(const std::vector<BvhNode64>& binary, WideningRule rule) {
+std::vector<Bvh4Node128> widen_bvh(const BvhNodes& binary, WideningRule rule) {
     if (binary.empty()) throw std::invalid_argument("cannot widen a BVH with no nodes");
     std::vector<Bvh4Node128> wide;
     if (rule == WideningRule::LargestFirst) wide = widen(binary, WideningRule::LargestFirst);

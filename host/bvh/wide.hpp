@@ -30,7 +30,7 @@ enum class WideningRule {
 // CLP_BVH4_MAX_DEPTH (the traversal stack's bound), so the result fits
 // whenever the binary tree is within CLP_BVH_MAX_DEPTH (check_wide tells).
 // Throws std::invalid_argument for no nodes.
-std::vector<Bvh4Node128> widen_bvh(const std::vector<BvhNode64>& binary,
+std::vector<Bvh4Node128> widen_bvh(const BvhNodes& binary,
                                 WideningRule rule = WideningRule::LargestFirst);
 
 // Returns the depth (root = 1). Throws std::logic_error naming the first

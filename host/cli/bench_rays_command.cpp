@@ -98,7 +98,7 @@ int run_rays(const RaysOptions& o) {
             save(ray_file_name(kind), encode_ray_file(kind, rays, result));
         };
         bo.on_structure = [&](const std::string& source, const std::string& options,
-                              const std::vector<unsigned char>& nodes, const std::vector<TriVerts>& triangles) {
+                              const std::vector<unsigned char>& nodes, const BvhTriangles& triangles) {
             save(kBatchKernelsFile, source);
             save(kBatchOptionsFile, options + "\n");
             save(kNodesFile, std::string(nodes.begin(), nodes.end()));

@@ -78,7 +78,7 @@ public:
     void resolve_on_device(float exposure = 1.0f);
     const Buffer& srgb_buffer() const { return film_->srgb_buffer(); }
     // The flattened BVH, kept on the host for the viewer's box overlay (empty with Accel::Flat).
-    const std::vector<BvhNode64>& bvh_nodes() const { return bvh_nodes_; }
+    const BvhNodes& bvh_nodes() const { return bvh_nodes_; }
 
     // The film's sample count and the launches' totals since the last reset.
     RenderStats stats() const;
@@ -97,7 +97,7 @@ public:
 private:
     Context& ctx_;
     Camera camera_;
-    std::vector<BvhNode64> bvh_nodes_;
+    BvhNodes bvh_nodes_;
     std::unique_ptr<DeviceScene> scene_;
     std::unique_ptr<Film> film_;
     std::unique_ptr<IntegratorProgram> program_;

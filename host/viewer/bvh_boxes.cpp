@@ -20,7 +20,7 @@ Child child(const BvhNode64& n, int i) {
 // Calls f(child, level) for every non-empty child slot down to max_level,
 // iteratively (a degenerate BVH can be deep).
 template <class F>
-void walk(const std::vector<BvhNode64>& nodes, int max_level, F f) {
+void walk(const BvhNodes& nodes, int max_level, F f) {
     if (nodes.empty()) return;
     std::vector<std::pair<int, int>> stack{{0, 1}};  // (node, level of its children)
     while (!stack.empty()) {
@@ -38,13 +38,13 @@ void walk(const std::vector<BvhNode64>& nodes, int max_level, F f) {
 
 }  // namespace
 
-std::vector<LevelBox> bvh_boxes(const std::vector<BvhNode64>& nodes, int max_level) {
+std::vector<LevelBox> bvh_boxes(const BvhNodes& nodes, int max_level) {
     std::vector<LevelBox> boxes;
     walk(nodes, max_level, [&](const Child& c, int level) { boxes.push_back({c.lo, c.hi, level}); });
     return boxes;
 }
 
-int bvh_levels(const std::vector<BvhNode64>& nodes) {
+int bvh_levels(const BvhNodes& nodes) {
     int deepest = 0;
     walk(nodes, 1 << 30, [&](const Child&, int level) { deepest = std::max(deepest, level); });
     return deepest;

@@ -6,6 +6,7 @@
 
 #include <glm/glm.hpp>
 
+#include "bvh/bvh.hpp"
 #include "shared_structs.h"
 
 namespace clpath::viewer {
@@ -16,10 +17,10 @@ struct LevelBox {
 };
 
 // Every box of level 1..max_level; leaves end their branch early.
-std::vector<LevelBox> bvh_boxes(const std::vector<BvhNode64>& nodes, int max_level);
+std::vector<LevelBox> bvh_boxes(const BvhNodes& nodes, int max_level);
 
 // The deepest level that has a box: how far the overlay's depth can go.
-int bvh_levels(const std::vector<BvhNode64>& nodes);
+int bvh_levels(const BvhNodes& nodes);
 
 // The 24 endpoints of a box's 12 edges, as line-list vertices.
 std::vector<glm::vec3> box_edges(const LevelBox& box);

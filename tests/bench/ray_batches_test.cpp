@@ -22,7 +22,7 @@ namespace {
 struct Saved {
     std::string source, options;
     std::vector<unsigned char> nodes;
-    std::vector<TriVerts> triangles;
+    BvhTriangles triangles;
     std::vector<BatchRay> rays[3];
     std::vector<float> results[3];
 };
@@ -33,7 +33,7 @@ Saved run_and_save() {
     o.width = 32, o.height = 24, o.launches = 1, o.embree = false;
     Saved s;
     o.on_structure = [&](const std::string& source, const std::string& options,
-                         const std::vector<unsigned char>& nodes, const std::vector<TriVerts>& triangles) {
+                         const std::vector<unsigned char>& nodes, const BvhTriangles& triangles) {
         s.source = source, s.options = options, s.nodes = nodes, s.triangles = triangles;
     };
     o.on_traced = [&](RayBatchKind kind, const std::vector<BatchRay>& rays, const std::vector<float>& result) {
@@ -46,7 +46,7 @@ Saved run_and_save() {
 
 // One batch through the saved program and buffers, as a harness runs it:
 // the answers it would write to a ray file.
-std::vector<float> retrace(const Saved& s, const std::vector<TriVerts>& triangles, RayBatchKind kind) {
+std::vector<float> retrace(const Saved& s, const BvhTriangles& triangles, RayBatchKind kind) {
     Context& ctx = test::device();
     BuildResult built = build_program(ctx, s.source, s.options);
     const bool any = kind == RayBatchKind::Shadow;
@@ -85,7 +85,7 @@ TEST(RayBatchStructure, SavedProgramAndBuffersGiveTheSavedAnswers) {
 // differently.
 TEST(RayBatchStructure, ControlOtherTrianglesGiveOtherAnswers) {
     const Saved s = run_and_save();
-    std::vector<TriVerts> reversed(s.triangles.rbegin(), s.triangles.rend());
+    BvhTriangles reversed(s.triangles.rbegin(), s.triangles.rend());
     EXPECT_GT(differing(retrace(s, reversed, RayBatchKind::Primary), s.results[int(RayBatchKind::Primary)]), 100u);
 }
 

@@ -65,7 +65,7 @@ TEST(Binning, AvxAndPortableAgreeBitForBit) {
     if (!avx_available()) GTEST_SKIP() << "no AVX on this CPU";
     const std::vector<Ref> refs = random_refs(5000, 3);
     for (int bins : {2, 16, 64, 256})
-        for (std::size_t n : {std::size_t(bins), std::size_t(bins) + 1, std::size_t(127), std::size_t(128), std::size_t(1000), refs.size()}) {
+        for (std::size_t n : {std::size_t(bins), std::size_t(bins) + 1, std::size_t(127), std::size_t(128), std::size_t(131), std::size_t(1000), refs.size()}) {
             const BinMap map(centroid_bounds(refs, 0, n), bins);
             auto a = std::make_unique<Bins>(), b = std::make_unique<Bins>();
             bin_refs_portable(refs.data(), 0, std::uint32_t(n), map, *a);

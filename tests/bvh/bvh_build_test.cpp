@@ -99,6 +99,34 @@ TEST(BvhBuild, DeterministicAcrossThreadCounts) {
     }
 }
 
+TEST(BvhBuild, TheFastPathsBuildTheSameTree) {
+    // The two-record nodes decided without bins, four sets of bins instead of
+    // two, the output arrays left for the threads to write: none may change
+    // a bit of the tree. The digest is of the nodes and triangles the builder
+    // made before them (af00287, its general path for every node); a coherent
+    // mesh large enough for the parallel top levels, and a random soup for
+    // nodes of every size. An intended change of the tree updates it.
+    std::vector<glm::vec3> v = make_icosphere(6);
+    const std::vector<glm::vec3> s = test::random_soup(30000, 7, 0.001f, 0.05f);
+    v.insert(v.end(), s.begin(), s.end());
+    for (int threads : {1, 2}) {
+        BvhBuildOptions o;
+        o.threads = threads;
+        const Bvh b = checked(v, o);
+        std::uint64_t h = 1469598103934665603ull;  // FNV-1a, 64 bits
+        auto mix = [&h](const void* p, std::size_t bytes) {
+            for (std::size_t i = 0; i < bytes; ++i) {
+                h ^= static_cast<const unsigned char*>(p)[i];
+                h *= 1099511628211ull;
+            }
+        };
+        mix(b.nodes.data(), b.nodes.size() * sizeof(BvhNode64));
+        mix(b.triangles.data(), b.triangles.size() * sizeof(TriVerts));
+        EXPECT_EQ(b.nodes.size(), 76161u) << threads << " threads";
+        EXPECT_EQ(h, 0x8a197f32ccdb62fbull) << threads << " threads";
+    }
+}
+
 TEST(BvhBuild, SahBeatsMedianSplits) {
     // With 2 bins the SAH sees only the midpoint split; more bins must find cheaper trees.
     const auto v = soup(50000, 6, 0.05f);

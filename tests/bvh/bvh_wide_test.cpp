@@ -66,10 +66,10 @@ Bvh twig_chain(int depth) {
         (slot ? n.count1 : n.count0) = count;
     };
     const float size = float(2 * chain + 4);
-    b.nodes.resize(std::size_t(chain));
+    b.nodes.resize(std::size_t(chain), BvhNode64{});
     auto add_twig = [&]() {
         const int index = int(b.nodes.size());
-        b.nodes.emplace_back();
+        b.nodes.emplace_back(BvhNode64{});
         for (int s = 0; s < 2; ++s) {
             const int tri = int(b.triangles.size());
             TriVerts t{};
@@ -134,7 +134,7 @@ TEST(BvhWide, DeepestBinaryTreeFitsTheStack) {
 // A and B and keeps A1.
 TEST(BvhWide, LargestFirstOpensTheLargestChildren) {
     Bvh b;
-    b.nodes.resize(4);
+    b.nodes.resize(4, BvhNode64{});
     set_slot(b.nodes[0], 0, {0, 0}, {10, 10}, 1, 0);  // A
     set_slot(b.nodes[0], 1, {20, 0}, {21, 1}, 2, 0);  // B
     set_slot(b.nodes[1], 0, {0, 0}, {9, 9}, 3, 0);    // A1

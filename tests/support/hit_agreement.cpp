@@ -4,7 +4,7 @@
 
 namespace clpath::test {
 
-bool same_hit_or_exact_tie(const std::vector<TriVerts>& tris, const TestRay& ray, int prim_a, int prim_b, float t) {
+bool same_hit_or_exact_tie(const BvhTriangles& tris, const TestRay& ray, int prim_a, int prim_b, float t) {
     if (prim_a == prim_b) return true;
     if (prim_a < 0 || prim_b < 0) return false;
     const std::vector<float> r = packed({ray});

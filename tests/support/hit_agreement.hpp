@@ -13,6 +13,6 @@
 namespace clpath::test {
 
 // tris[p] is the scene's triangle p (device_triangles); prims of -1 are misses.
-bool same_hit_or_exact_tie(const std::vector<TriVerts>& tris, const TestRay& ray, int prim_a, int prim_b, float t);
+bool same_hit_or_exact_tie(const BvhTriangles& tris, const TestRay& ray, int prim_a, int prim_b, float t);
 
 }  // namespace clpath::test

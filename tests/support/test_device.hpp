@@ -31,8 +31,8 @@ cl_program probe_program(const RenderSettings& settings);
 // Runs a kernel over n work-items and waits.
 void run(const Kernel& k, std::size_t n);
 
-template <class T>
-Buffer upload(const std::vector<T>& v, const std::string& what = "test input") {
+template <class T, class A>
+Buffer upload(const std::vector<T, A>& v, const std::string& what = "test input") {
     return device().buffer(v.size() * sizeof(T), CL_MEM_READ_WRITE, what, v.data());
 }
 

@@ -16,7 +16,7 @@ Traced trace_bvh(const Bvh& bvh, const std::vector<float>& rays, const std::vect
     return {download<float>(ot, n), download<int>(op, n), download<int>(oa, n)};
 }
 
-Traced trace_brute(const std::vector<TriVerts>& tris, const std::vector<float>& rays) {
+Traced trace_brute(const BvhTriangles& tris, const std::vector<float>& rays) {
     const std::uint32_t n = std::uint32_t(rays.size() / 6), tc = std::uint32_t(tris.size());
     Kernel k = device().kernel(probe_program(), "probe_brute");
     Buffer tb = upload(tris), rb = upload(rays);
@@ -27,9 +27,9 @@ Traced trace_brute(const std::vector<TriVerts>& tris, const std::vector<float>& 
     return {download<float>(ot, n), download<int>(op, n), {}};
 }
 
-std::vector<TriVerts> device_triangles(const std::vector<glm::vec3>& verts) {
+BvhTriangles device_triangles(const std::vector<glm::vec3>& verts) {
     const std::uint32_t tc = std::uint32_t(verts.size() / 3);
-    std::vector<TriVerts> tris(tc);
+    BvhTriangles tris(tc, TriVerts{});
     for (std::uint32_t i = 0; i < tc; ++i) {
         for (int c = 0; c < 3; ++c) {
             tris[i].v0[c] = verts[3 * i][c];

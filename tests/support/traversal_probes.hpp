@@ -22,9 +22,9 @@ struct Traced {
 Traced trace_bvh(const Bvh& bvh, const std::vector<float>& rays, const std::vector<float>& tmax);
 
 // Closest hit against every triangle in turn.
-Traced trace_brute(const std::vector<TriVerts>& tris, const std::vector<float>& rays);
+Traced trace_brute(const BvhTriangles& tris, const std::vector<float>& rays);
 
 // A triangle soup (3 vertices each) as device triangles whose prim is their index.
-std::vector<TriVerts> device_triangles(const std::vector<glm::vec3>& verts);
+BvhTriangles device_triangles(const std::vector<glm::vec3>& verts);
 
 }  // namespace clpath::test

@@ -27,8 +27,8 @@ void set_child(BvhNode64& n, int i, glm::vec3 lo, glm::vec3 hi, int child, unsig
 }
 
 // root -> (node 1, leaf); node 1 -> (leaf, leaf)
-std::vector<BvhNode64> three_level_bvh() {
-    std::vector<BvhNode64> nodes(2);
+BvhNodes three_level_bvh() {
+    BvhNodes nodes(2, BvhNode64{});
     set_child(nodes[0], 0, {0, 0, 0}, {1, 1, 1}, 1, 0);
     set_child(nodes[0], 1, {2, 0, 0}, {3, 1, 1}, ~0, 2);
     set_child(nodes[1], 0, {0, 0, 0}, {0.5f, 1, 1}, ~2, 1);
@@ -53,7 +53,7 @@ TEST(ViewerBvhBoxes, LevelsFollowTheTree) {
 }
 
 TEST(ViewerBvhBoxes, EmptySlotOfALeafRootIsSkipped) {
-    std::vector<BvhNode64> nodes(1);
+    BvhNodes nodes(1, BvhNode64{});
     set_child(nodes[0], 0, {0, 0, 0}, {1, 1, 1}, ~0, 3);
     set_child(nodes[0], 1, {0, 0, 0}, {0, 0, 0}, ~0, 0);
     EXPECT_EQ(bvh_boxes(nodes, 3).size(), 1u);
