@@ -14,7 +14,8 @@
 #   TINYBVH_BUILDERS (default,build: BuildDefault and the reference Build; also avx, hq),
 #   TINYBVH_DIR unset: clpath alone (as before);
 #   BASELINE=path/to/older/clpath  also times that binary in every round (before/after);
-#   NOTE  a line on the machine's state for the README (e.g. "shared with other builds").
+#   NOTE  a line on the machine's state for the README; one starting "shared" (e.g. "shared with
+#         other builds") marks the run as on a shared machine whatever the load average says.
 set -u
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 DEV_DIR=${1:-pocl-epyc-2core}

@@ -26,7 +26,9 @@ def main():
     builders = list(dict.fromkeys(r["builder"] for r in tb))
     loads = [float(r["load1"]) for r in clp + tb]
     cores = int(meta.get("cores", "2"))
-    shared = max(loads) > 1.25 * cores or meta.get("note")
+    # A note says what else ran; one that starts "shared" marks the machine shared whatever its load.
+    note = meta.get("note", "")
+    shared = max(loads) > 1.25 * cores or note.lower().startswith("shared")
 
     lines = []
     add = lines.append
@@ -41,11 +43,12 @@ def main():
         "as tinybvh's own CMake file compiles it, so BuildDefault is BuildAVX on this CPU.")
     if shared:
         add(f"- **The machine was shared** with other work: load average (1 min) {min(loads):.1f} to {max(loads):.1f} "
-            f"on {cores} cores. {meta.get('note', '')} The two programs ran back to back in every round, the order "
+            f"on {cores} cores. {note.rstrip('.') + '. ' if note else ''}The two programs ran back to back in every round, the order "
             "alternating, so each ratio compares runs that met about the same load; absolute times are above an "
             "idle machine's. Retake on an idle machine with the command below.")
     else:
-        add(f"- Load average (1 min) {min(loads):.1f} to {max(loads):.1f} on {cores} cores (idle but for the builders).")
+        add(f"- Load average (1 min) {min(loads):.1f} to {max(loads):.1f} on {cores} cores (idle but for the builders)."
+            + (f" {note}" if note else ""))
     add(f"- Command: `TINYBVH_DIR=<tinybvh checkout> ROUNDS={meta['rounds']} benchmarks/bvh_build/run.sh <this folder's "
         "name>`; every entry is the median of 3 builds in one process (`log.txt`, `runs.csv`, `tinybvh-runs.csv`).")
     add("- SAH cost: the same measure for both (each interior node's area plus each leaf's area times its triangles, "
