@@ -85,22 +85,29 @@ void bin_refs_sparse(const Ref* r, std::uint32_t begin, std::uint32_t end, const
     std::uint8_t bin_of[3][kMaxBins];  // n < bins <= kMaxBins
     std::uint8_t rank[3][kMaxBins];
     const int words = (map.bins + 63) / 64;
+    // Bins 0-63 of each axis in registers (every bin with the default 16):
+    // in memory, each record's three updates waited on the last record's.
+    std::uint64_t occupied[3][kMaxBins / 64], low[3] = {0, 0, 0};
     for (int a = 0; a < 3; ++a)
-        for (int w = 0; w < words; ++w) b.occupied[a][w] = 0;
+        for (int w = 0; w < words; ++w) occupied[a][w] = 0;
     for (std::uint32_t i = 0; i < n; ++i) {
         const F4 lo = load3(r[begin + i].lo), hi = load3(r[begin + i].hi);
         int k[3];
         bin_index3((centroid(lo, hi) - map.lo) * map.scale, map.top, k[0], k[1], k[2]);
         for (int a = 0; a < 3; ++a) {
             bin_of[a][i] = std::uint8_t(k[a]);
-            b.occupied[a][k[a] >> 6] |= std::uint64_t(1) << (k[a] & 63);
+            if (k[a] < 64)
+                low[a] |= std::uint64_t(1) << k[a];
+            else
+                occupied[a][k[a] >> 6] |= std::uint64_t(1) << (k[a] & 63);
         }
     }
     for (int a = 0; a < 3; ++a) {
+        occupied[a][0] |= low[a];
         BinList& l = lists[a];
         l.size = 0;
         for (int w = 0; w < words; ++w)
-            for (std::uint64_t m = b.occupied[a][w]; m; m &= m - 1) {
+            for (std::uint64_t m = occupied[a][w]; m; m &= m - 1) {
                 const int k = w * 64 + __builtin_ctzll(m);
                 rank[a][k] = std::uint8_t(l.size);
                 l.bin[l.size] = std::uint8_t(k);

@@ -19,7 +19,6 @@ constexpr int kMaxBins = 256;
 struct Bins {
     Box4 box[3][kMaxBins];
     std::uint32_t count[3][kMaxBins];
-    std::uint64_t occupied[3][kMaxBins / 64];
 
     void clear(int bins) {
         for (int a = 0; a < 3; ++a)
