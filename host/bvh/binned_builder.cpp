@@ -432,50 +432,63 @@ private:
         std::size_t leaf_count = 0;
         stack[sp++] = root;
         const std::uint32_t dense_from = std::uint32_t(opt_.bins);
+        // A node's left child goes on in r and its right child is built in
+        // its stack slot: copying a just-built child through the stack whole
+        // stalled every node, as its fields were stored one by one and read
+        // back 16 bytes at a time (a store cannot be forwarded to a wider load).
         while (sp > 0) {
-            const Range r = stack[--sp];
-            Ref* a = refs(r);
-            const std::uint32_t n = r.end - r.begin;
-            if (n == 1) {  // a point's centroid bounds: decide() would find no split either
-                leaf(r);
-                ++leaf_count;
-                continue;
+            Range r = stack[--sp];  // a right child, stored long ago
+            for (;;) {
+                Ref* a = refs(r);
+                const std::uint32_t n = r.end - r.begin;
+                if (n == 1) {  // a point's centroid bounds: decide() would find no split either
+                    leaf(r);
+                    ++leaf_count;
+                    break;
+                }
+                if (n == 2 && pair(r, leaf_count)) break;
+                const BinMap map(r.cbox, opt_.bins);
+                const Decision d = decide(
+                    r,
+                    [&](Bins& b, BinList* l) {
+                        if (n == 2) {
+                            bin_refs_pair(a, r.begin, map, b, l);
+                        } else if (n < dense_from) {
+                            bin_refs_sparse(a, r.begin, r.end, map, b, l);
+                        } else {
+                            bin_refs(a, r.begin, r.end, map, b);
+                            for (int ax = 0; ax < 3; ++ax) list_all(opt_.bins, l[ax]);
+                        }
+                    },
+                    bins, lists);
+                if (d.kind == Decision::Leaf) {
+                    leaf(r);
+                    ++leaf_count;
+                    break;
+                }
+                Range left{};
+                Range& right = stack[sp++];
+                right = Range{};
+                std::uint32_t m = r.begin;
+                bool in_tmp = r.in_tmp;
+                if (d.kind == Decision::Sah) {
+                    // Into the other array: the children live there from now on.
+                    m = partition_refs(a, r.in_tmp ? main_ : tmp_, r.begin, r.end, map, d.axis, d.bin, left.cbox,
+                                       right.cbox);
+                    in_tmp = !r.in_tmp;
+                    child_boxes(bins, lists[d.axis], d, left.box, right.box);
+                } else {
+                    m = median_split(r, d.axis, left, right);
+                }
+                set_children(r, m, in_tmp, left, right);
+                interior(r, m);
+                r.box = left.box;
+                r.cbox = left.cbox;
+                r.end = left.end;
+                r.slot = left.slot;
+                r.depth = left.depth;
+                r.in_tmp = left.in_tmp;
             }
-            if (n == 2 && pair(r, leaf_count)) continue;
-            const BinMap map(r.cbox, opt_.bins);
-            const Decision d = decide(
-                r,
-                [&](Bins& b, BinList* l) {
-                    if (n == 2) {
-                        bin_refs_pair(a, r.begin, map, b, l);
-                    } else if (n < dense_from) {
-                        bin_refs_sparse(a, r.begin, r.end, map, b, l);
-                    } else {
-                        bin_refs(a, r.begin, r.end, map, b);
-                        for (int ax = 0; ax < 3; ++ax) list_all(opt_.bins, l[ax]);
-                    }
-                },
-                bins, lists);
-            if (d.kind == Decision::Leaf) {
-                leaf(r);
-                ++leaf_count;
-                continue;
-            }
-            Range left{}, right{};
-            std::uint32_t m = r.begin;
-            bool in_tmp = r.in_tmp;
-            if (d.kind == Decision::Sah) {
-                // Into the other array: the children live there from now on.
-                m = partition_refs(a, r.in_tmp ? main_ : tmp_, r.begin, r.end, map, d.axis, d.bin, left.cbox, right.cbox);
-                in_tmp = !r.in_tmp;
-                child_boxes(bins, lists[d.axis], d, left.box, right.box);
-            } else {
-                m = median_split(r, d.axis, left, right);
-            }
-            set_children(r, m, in_tmp, left, right);
-            interior(r, m);
-            stack[sp++] = right;
-            stack[sp++] = left;
         }
         leaves += leaf_count;
         return leaf_count;
@@ -507,15 +520,19 @@ Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& o
                 const glm::vec3 &p = vertices[3 * i], &q = vertices[3 * i + 1], &s = vertices[3 * i + 2];
                 Ref& r = refs[i];
                 bool finite = true;
+                float l[3], h[3];
                 for (int a = 0; a < 3; ++a) {
-                    r.lo[a] = std::min({p[a], q[a], s[a]});
-                    r.hi[a] = std::max({p[a], q[a], s[a]});
+                    l[a] = r.lo[a] = std::min({p[a], q[a], s[a]});
+                    h[a] = r.hi[a] = std::max({p[a], q[a], s[a]});
                     finite = finite && std::isfinite(p[a]) && std::isfinite(q[a]) && std::isfinite(s[a]);
                 }
                 if (!finite && bad[k] == n) bad[k] = i;
                 r.prim = std::uint32_t(i);
                 r.pad = 0;
-                const F4 lo = load3(r.lo), hi = load3(r.hi);
+                // From registers: reading the record back as 16 bytes just
+                // after its 4-byte prim and pad were stored stalled every
+                // record (a store cannot be forwarded to a wider load).
+                const F4 lo = set4(l[0], l[1], l[2], 0.0f), hi = set4(h[0], h[1], h[2], 0.0f);
                 b.grow(lo, hi);
                 c.grow_point(centroid(lo, hi));
             }

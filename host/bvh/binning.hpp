@@ -60,13 +60,12 @@ struct BinMap {
     F4 lo, scale, top;
     int bins;
     BinMap(const Box4& cbox, int bins) : bins(bins) {
-        // One division per lane, as b / max(extent, 1e-30) per axis; lane 3 unused.
+        // One division per lane, as b / max(extent, 1e-30) per axis; lane 3
+        // zeroed in a register (through memory, a 4-byte store then a 16-byte
+        // load of the same bytes stalled every node: no store forwarding).
         const F4 e = max4(cbox.hi - cbox.lo, splat(1e-30f));
         lo = cbox.lo;
-        alignas(16) float sc[4];
-        store4(sc, splat(float(bins)) / e);
-        sc[3] = 0.0f;
-        scale = load4(sc);
+        scale = zero_lane3(splat(float(bins)) / e);
         top = splat(float(bins - 1));
     }
     // Whether centroid c's bin on axis is <= bin, for bin < bins - 1: the

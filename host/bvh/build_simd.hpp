@@ -22,6 +22,7 @@ inline F4 load3(const float* p) {
     return {_mm_and_ps(_mm_load_ps(p), mask)};
 }
 inline void store4(float* p, F4 a) { _mm_store_ps(p, a.v); }
+inline F4 zero_lane3(F4 a) { return {_mm_and_ps(a.v, _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0)))}; }
 inline F4 splat(float x) { return {_mm_set1_ps(x)}; }
 inline F4 set4(float x, float y, float z, float w) { return {_mm_setr_ps(x, y, z, w)}; }
 inline F4 min4(F4 a, F4 b) { return {_mm_min_ps(a.v, b.v)}; }
@@ -70,6 +71,7 @@ inline F4 load3(const float* p) { return {{p[0], p[1], p[2], 0.0f}}; }
 inline void store4(float* p, F4 a) {
     for (int i = 0; i < 4; ++i) p[i] = a.v[i];
 }
+inline F4 zero_lane3(F4 a) { return {{a.v[0], a.v[1], a.v[2], 0.0f}}; }
 inline F4 splat(float x) { return {{x, x, x, x}}; }
 inline F4 set4(float x, float y, float z, float w) { return {{x, y, z, w}}; }
 #define CLPATH_F4_OP(name, expr)              \
