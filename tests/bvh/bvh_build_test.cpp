@@ -8,6 +8,7 @@
 #include <random>
 
 #include "bvh/bvh.hpp"
+#include "cl/program.hpp"
 #include "scene/shapes.hpp"
 #include "support/random_geometry.hpp"
 #include "util/error.hpp"
@@ -113,15 +114,9 @@ TEST(BvhBuild, TheFastPathsBuildTheSameTree) {
         BvhBuildOptions o;
         o.threads = threads;
         const Bvh b = checked(v, o);
-        std::uint64_t h = 1469598103934665603ull;  // FNV-1a, 64 bits
-        auto mix = [&h](const void* p, std::size_t bytes) {
-            for (std::size_t i = 0; i < bytes; ++i) {
-                h ^= static_cast<const unsigned char*>(p)[i];
-                h *= 1099511628211ull;
-            }
-        };
-        mix(b.nodes.data(), b.nodes.size() * sizeof(BvhNode64));
-        mix(b.triangles.data(), b.triangles.size() * sizeof(TriVerts));
+        auto bytes = [](const void* p, std::size_t n) { return std::string(static_cast<const char*>(p), n); };
+        const std::uint64_t h = fnv1a64(bytes(b.triangles.data(), b.triangles.size() * sizeof(TriVerts)),
+                                        fnv1a64(bytes(b.nodes.data(), b.nodes.size() * sizeof(BvhNode64))));
         EXPECT_EQ(b.nodes.size(), 76161u) << threads << " threads";
         EXPECT_EQ(h, 0x8a197f32ccdb62fbull) << threads << " threads";
     }
