@@ -14,6 +14,8 @@
 
 #include "bvh/binning.hpp"
 #include "bvh/partition.hpp"
+#include "bvh/sah_sweep.hpp"
+#include "bvh/small_node.hpp"
 #include "bvh/build_simd.hpp"
 #include "util/error.hpp"
 
@@ -60,13 +62,36 @@ constexpr std::uint32_t kBigNode = 1u << 14;
 // The records a thread bins or scatters at a time in those nodes.
 constexpr std::uint32_t kChunk = 1u << 13;
 
-// A subtree still to build: records [begin, end), in the scatter array when in_tmp.
+constexpr std::uint32_t kNoParent = ~0u;
+
+// A subtree still to build: records [begin, end), in the scatter array when
+// in_tmp. Its box goes in slot side of node parent: one of the top levels'
+// (parent_top) or of the subtree's block; the tree's root has none.
 struct Range {
     Box4 box, cbox;  // of the triangles' boxes, of their centroids
-    std::uint32_t begin, end, slot;
+    std::uint32_t begin, end, parent;
     int depth;  // of this node, root = 1
-    bool in_tmp;
+    std::uint8_t side;
+    bool in_tmp, parent_top;
 };
+
+// What one thread's subtree wrote: its nodes, numbered from 0 in block, and
+// its share of the tree's statistics.
+struct Sub {
+    BvhNode64* block = nullptr;
+    std::uint32_t next = 0;  // nodes so far
+    std::size_t leaves = 0;
+    double cost = 0;  // SAH, over the root's area
+    int max_depth = 0;
+};
+
+// A child's slot in its parent: its box, and its node's index (count 0) or
+// its first record's complement and record count (a leaf), as two 16-byte
+// rows (kernels/shared_structs.h: index and count are the rows' fourth fields).
+void set_slot(BvhNode64& p, int side, const Box4& b, int child, std::uint32_t count) {
+    store3_with(side ? p.lo1 : p.lo0, b.lo, std::uint32_t(child));
+    store3_with(side ? p.hi1 : p.hi0, b.hi, count);
+}
 
 // What a node does: become a leaf, split at an SAH bin boundary, or split at the median.
 struct Decision {
@@ -76,14 +101,11 @@ struct Decision {
 
 class Builder {
 public:
-    Builder(const BvhBuildOptions& opt, Ref* main, Ref* tmp, TreeNode* nodes)
-        : opt_(opt), main_(main), tmp_(tmp), nodes_(nodes) {}
+    Builder(const BvhBuildOptions& opt, Ref* main, Ref* tmp, float root_area)
+        : opt_(opt), main_(main), tmp_(tmp), root_area_(root_area) {}
 
-    std::atomic<std::size_t> leaves{0};
-    std::vector<Subtree> subtrees;
-    std::size_t top_interior = 0;
-
-    void build(const Range& root) {
+    // The tree below root into nodes and t (all but refs).
+    void build(const Range& root, BvhNodes& nodes, Tree& t) {
         std::vector<Range> tasks, level, next;
         (root.end - root.begin >= kBigNode ? level : tasks).push_back(root);
         while (!level.empty()) {
@@ -91,56 +113,99 @@ public:
             level.swap(next);
             next.clear();
         }
+        // Each subtree's block where the most nodes it can have fit, left to right.
+        std::sort(tasks.begin(), tasks.end(), [](const Range& a, const Range& b) { return a.begin < b.begin; });
+        const std::size_t K = tasks.size(), top = top_.size();
+        std::vector<std::size_t> base(K);
+        std::size_t reserved = top;
+        for (std::size_t k = 0; k < K; ++k) {
+            base[k] = reserved;
+            reserved += tasks[k].end - tasks[k].begin - 1;
+        }
+        reserved = std::max<std::size_t>(reserved, 1);  // a root leaf still has a node
+        nodes.resize(reserved);  // left unwritten, on huge pages (UninitAllocator)
         // Largest first, so the last task to start is a small one.
-        std::sort(tasks.begin(), tasks.end(), [](const Range& a, const Range& b) {
-            return a.end - a.begin > b.end - b.begin || (a.end - a.begin == b.end - b.begin && a.begin < b.begin);
+        std::vector<std::size_t> order(K);
+        for (std::size_t k = 0; k < K; ++k) order[k] = k;
+        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+            const std::uint32_t na = tasks[a].end - tasks[a].begin, nb = tasks[b].end - tasks[b].begin;
+            return na > nb || (na == nb && a < b);
         });
+        std::vector<Sub> subs(K);
+        for (std::size_t k = 0; k < K; ++k) subs[k].block = nodes.data() + base[k];
         std::atomic<std::size_t> next_task{0};
-        const int workers = int(std::min<std::size_t>(std::size_t(opt_.threads), tasks.size()));
+        const int workers = int(std::min<std::size_t>(std::size_t(opt_.threads), K));
         std::vector<std::unique_ptr<Bins>> worker_bins(std::size_t(std::max(workers, 1)));
         for (auto& b : worker_bins) b = std::make_unique<Bins>();
-        subtrees.resize(tasks.size());
         fork_join(workers, [&](int w) {
-            for (std::size_t i; (i = next_task.fetch_add(1)) < tasks.size();)
-                subtrees[i] = {tasks[i].slot, tasks[i].begin, tasks[i].depth, subtree(tasks[i], *worker_bins[w])};
+            for (std::size_t i; (i = next_task.fetch_add(1)) < K;)
+                subtree(tasks[order[i]], *worker_bins[w], subs[order[i]]);
         });
-        std::sort(subtrees.begin(), subtrees.end(), [](const Subtree& a, const Subtree& b) { return a.begin < b.begin; });
+        // Where the blocks go, and the top levels' links to their roots; the
+        // sums in a fixed order (top levels, then left to right).
+        t.sah_cost = top_cost_;
+        t.max_depth = top_depth_;
+        t.leaf_count = 0;
+        std::size_t at = top;
+        for (std::size_t k = 0; k < K; ++k) {
+            const Sub& s = subs[k];
+            t.sah_cost += s.cost;
+            t.leaf_count += s.leaves;
+            t.max_depth = std::max(t.max_depth, s.max_depth);
+            if (s.next == 0) continue;  // a leaf: its parent holds it
+            if (tasks[k].parent != kNoParent) {
+                BvhNode64& p = top_[tasks[k].parent];
+                (tasks[k].side ? p.child1 : p.child0) = int(at);
+            }
+            t.blocks.push_back({base[k], at, s.next});
+            at += s.next;
+        }
+        t.node_count = at;
+        std::copy(top_.begin(), top_.end(), nodes.begin());
+        if (at == 0) {  // the whole tree is one leaf: the root holds it in slot 0, slot 1 empty
+            BvhNode64& n = nodes[0];
+            set_slot(n, 0, root.box, ~int(root.begin), root.end - root.begin);
+            set_slot(n, 1, root.box, ~0, 0);
+            t.node_count = 1;
+            t.max_depth = 1;
+            t.sah_cost = double(opt_.traversal_cost) + double(root.end - root.begin);
+        }
     }
 
 private:
     const BvhBuildOptions& opt_;
     Ref* main_;
     Ref* tmp_;
-    TreeNode* nodes_;
+    const float root_area_;
     std::deque<Bins> part_;  // big_level's bins, one per chunk
+    std::vector<BvhNode64> top_;  // the top levels' nodes, level by level
+    double top_cost_ = 0;
+    int top_depth_ = 0;
 
     Ref* refs(const Range& r) const { return r.in_tmp ? tmp_ : main_; }
 
+    BvhNode64* parent_of(const Range& r, const Sub& s) {
+        if (r.parent == kNoParent) return nullptr;
+        return r.parent_top ? &top_[r.parent] : &s.block[r.parent];
+    }
+
     // Its records end in the main array (partitions alternate between the two).
-    void leaf(const Range& r) {
+    void leaf(const Range& r, Sub& s) {
         if (r.in_tmp)
             for (std::uint32_t i = r.begin; i < r.end; ++i) main_[i] = tmp_[i];
-        TreeNode& n = nodes_[r.slot];
-        store_box(n, r.box);
-        n.link = r.begin;
-        n.count = r.end - r.begin;
+        const std::uint32_t n = r.end - r.begin;
+        ++s.leaves;
+        s.cost += double(n) * area(r.box) / root_area_;
+        if (BvhNode64* p = parent_of(r, s)) set_slot(*p, r.side, r.box, ~int(r.begin), n);
     }
 
-    void interior(const Range& r, std::uint32_t mid) {
-        TreeNode& n = nodes_[r.slot];
-        store_box(n, r.box);
-        n.count = 0;
-        n.link = r.slot + 2 * (mid - r.begin);
-    }
-
-    static void store_box(TreeNode& n, const Box4& b) {
-        alignas(16) float lo[4], hi[4];
-        store4(lo, b.lo);
-        store4(hi, b.hi);
-        for (int a = 0; a < 3; ++a) {
-            n.lo[a] = lo[a];
-            n.hi[a] = hi[a];
-        }
+    // Numbers the node in its subtree's block and links it from its parent.
+    std::uint32_t interior(const Range& r, Sub& s) {
+        const std::uint32_t index = s.next++;
+        s.cost += opt_.traversal_cost * area(r.box) / root_area_;
+        s.max_depth = std::max(s.max_depth, r.depth);
+        if (BvhNode64* p = parent_of(r, s)) set_slot(*p, r.side, r.box, int(index), 0);
+        return index;
     }
 
     // Never deeper than the traversal stack: when the levels left only just
@@ -152,40 +217,6 @@ private:
         int balanced_needs = 1;
         for (std::uint64_t cap = std::uint64_t(opt_.max_leaf_size); cap < n; cap *= 2) ++balanced_needs;
         return balanced_needs >= levels_left;
-    }
-
-    // The cheapest split over the listed bins' boundaries on axis a
-    // (MacDonald & Booth 1990; Wald 2007): left area x count plus right area
-    // x count, not yet over the node's area. Keeps the first of equal costs.
-    static void sweep(const Bins& bins, int a, const BinList& list, std::uint32_t n, float& best_cost, int& best_axis,
-                      int& best_bin) {
-        float right_cost[kMaxBins];
-        const int m = list.size;
-        const Box4* box = bins.box[a];
-        const std::uint32_t* count = bins.count[a];
-        F4 lo = splat(std::numeric_limits<float>::infinity()), hi = splat(-std::numeric_limits<float>::infinity());
-        std::uint32_t cnt = 0;
-        for (int j = m - 1; j > 0; --j) {  // right side areas, swept from the right
-            lo = min4(lo, box[j].lo);
-            hi = max4(hi, box[j].hi);
-            cnt += count[j];
-            right_cost[j] = cnt ? area_of_extent(hi - lo) * float(cnt) : 0.0f;
-        }
-        lo = splat(std::numeric_limits<float>::infinity());
-        hi = splat(-std::numeric_limits<float>::infinity());
-        cnt = 0;
-        for (int j = 0; j < m - 1; ++j) {
-            lo = min4(lo, box[j].lo);
-            hi = max4(hi, box[j].hi);
-            cnt += count[j];
-            if (cnt == 0 || cnt == n) continue;
-            const float c = area_of_extent(hi - lo) * float(cnt) + right_cost[j + 1];
-            if (c < best_cost) {
-                best_cost = c;
-                best_axis = a;
-                best_bin = list.bin[j];
-            }
-        }
     }
 
     // Leaf, SAH split or median split for node r, whose triangles
@@ -202,7 +233,7 @@ private:
         if (!force_median(r) && ext[axis_long] > 0) {
             fill(bins, lists);
             for (int a = 0; a < 3; ++a)
-                if (ext[a] > 0) sweep(bins, a, lists[a], n, best_cost, best_axis, best_bin);
+                if (ext[a] > 0) sah_sweep(bins, a, lists[a], n, best_cost, best_axis, best_bin);
             const float node_area = area(r.box);
             const float split_cost = opt_.traversal_cost + (node_area > 0 ? best_cost / node_area : 0.0f);
             if (n <= std::uint32_t(opt_.max_leaf_size) && (best_axis < 0 || float(n) <= split_cost)) return d;
@@ -246,13 +277,16 @@ private:
         return m;
     }
 
-    void set_children(const Range& r, std::uint32_t m, bool in_tmp, Range& left, Range& right) const {
+    static void set_children(const Range& r, std::uint32_t m, bool in_tmp, std::uint32_t parent, bool parent_top,
+                             Range& left, Range& right) {
         left.begin = r.begin;
         left.end = m;
-        left.slot = r.slot + 1;
         right.begin = m;
         right.end = r.end;
-        right.slot = r.slot + 2 * (m - r.begin);
+        left.parent = right.parent = parent;
+        left.parent_top = right.parent_top = parent_top;
+        left.side = 0;
+        right.side = 1;
         left.depth = right.depth = r.depth + 1;
         left.in_tmp = right.in_tmp = in_tmp;
     }
@@ -265,7 +299,8 @@ private:
     void big_level(const std::vector<Range>& level, std::vector<Range>& next, std::vector<Range>& tasks) {
         const int T = opt_.threads;
         const std::size_t L = level.size();
-        top_interior += L;  // a large node is never a leaf
+        const std::size_t first_node = top_.size();  // a large node is never a leaf
+        top_.resize(first_node + L);
         // Each node cut into chunks of a fixed size, whatever the thread count,
         // handed out one at a time: a thread that starts late or is preempted
         // (a busy machine) takes fewer, and the bins merge in chunk order.
@@ -362,8 +397,11 @@ private:
             } else {
                 m = median_split(r, sp.d.axis, sp.left, sp.right);  // a big node never becomes a leaf
             }
-            set_children(r, m, in_tmp, sp.left, sp.right);
-            interior(r, m);
+            const std::uint32_t index = std::uint32_t(first_node + i);
+            top_cost_ += opt_.traversal_cost * area(r.box) / root_area_;
+            top_depth_ = std::max(top_depth_, r.depth);
+            if (r.parent != kNoParent) set_slot(top_[r.parent], r.side, r.box, int(index), 0);
+            set_children(r, m, in_tmp, index, true, sp.left, sp.right);
             for (const Range* c : {&sp.left, &sp.right}) (c->end - c->begin >= kBigNode ? next : tasks).push_back(*c);
         }
     }
@@ -376,7 +414,7 @@ private:
     // first-of-equal-costs rule picks the first such axis, and the record in
     // its lower bin goes left. False (nothing done) where leaves must hold
     // single records: decide() may split at the median then.
-    bool pair(const Range& r, std::size_t& leaf_count) {
+    bool pair(const Range& r, Sub& s) {
         if (opt_.max_leaf_size < 2) return false;
         const Ref* a = refs(r);
         const Ref p = a[r.begin], q = a[r.begin + 1];
@@ -397,39 +435,32 @@ private:
             if (!(cost < std::numeric_limits<float>::infinity()) || 2.0f <= split_cost) axis = -1;
         }
         if (axis < 0) {
-            leaf(r);
-            ++leaf_count;
+            leaf(r, s);
             return true;
         }
         const bool swap = kq[axis] < kp[axis];
-        const Ref& left = swap ? q : p;
-        const Ref& right = swap ? p : q;
-        main_[r.begin] = left;
-        main_[r.begin + 1] = right;
-        interior(r, r.begin + 1);
-        single_leaf(r.slot + 1, left, r.begin);
-        single_leaf(r.slot + 2, right, r.begin + 1);
-        leaf_count += 2;
+        main_[r.begin] = swap ? q : p;
+        main_[r.begin + 1] = swap ? p : q;
+        BvhNode64& n = s.block[interior(r, s)];
+        Box4 lb, rb;
+        lb.lo = swap ? qlo : plo;
+        lb.hi = swap ? qhi : phi;
+        rb.lo = swap ? plo : qlo;
+        rb.hi = swap ? phi : qhi;
+        set_slot(n, 0, lb, ~int(r.begin), 1);
+        set_slot(n, 1, rb, ~int(r.begin + 1), 1);
+        s.leaves += 2;
+        s.cost += double(area(lb)) / root_area_;
+        s.cost += double(area(rb)) / root_area_;
         return true;
     }
 
-    void single_leaf(std::uint32_t slot, const Ref& rec, std::uint32_t at) {
-        TreeNode& n = nodes_[slot];
-        for (int ax = 0; ax < 3; ++ax) {
-            n.lo[ax] = rec.lo[ax];
-            n.hi[ax] = rec.hi[ax];
-        }
-        n.link = at;
-        n.count = 1;
-    }
-
     // A whole subtree on one thread: depth first, each SAH partition scattered
-    // into the other array (a median split stays in place). Returns its leaf count.
-    std::size_t subtree(const Range& root, Bins& bins) {
+    // into the other array (a median split stays in place), its nodes into s.
+    void subtree(const Range& root, Bins& bins, Sub& s) {
         Range stack[2 * CLP_BVH_MAX_DEPTH + 4];
         BinList lists[3];
         int sp = 0;
-        std::size_t leaf_count = 0;
         stack[sp++] = root;
         const std::uint32_t dense_from = std::uint32_t(opt_.bins);
         // A node's left child goes on in r and its right child is built in
@@ -442,11 +473,30 @@ private:
                 Ref* a = refs(r);
                 const std::uint32_t n = r.end - r.begin;
                 if (n == 1) {  // a point's centroid bounds: decide() would find no split either
-                    leaf(r);
-                    ++leaf_count;
+                    leaf(r, s);
                     break;
                 }
-                if (n == 2 && pair(r, leaf_count)) break;
+                if (n == 2 && pair(r, s)) break;
+                Range left{};
+                if (n <= kSmallNodeMax && !force_median(r)) {
+                    const SmallSplit ss = small_split(a, r.in_tmp ? main_ : tmp_, r.begin, r.end, r.box, r.cbox,
+                                                      opt_.bins, opt_.max_leaf_size, opt_.traversal_cost);
+                    if (ss.kind == SmallSplit::Leaf) {
+                        leaf(r, s);
+                        break;
+                    }
+                    if (ss.kind == SmallSplit::Split) {
+                        Range& right = stack[sp++];
+                        right = Range{};
+                        left.box = ss.left_box;
+                        left.cbox = ss.left_cbox;
+                        right.box = ss.right_box;
+                        right.cbox = ss.right_cbox;
+                        set_children(r, ss.mid, !r.in_tmp, interior(r, s), false, left, right);
+                        continue_left(r, left);
+                        continue;
+                    }
+                }
                 const BinMap map(r.cbox, opt_.bins);
                 const Decision d = decide(
                     r,
@@ -462,11 +512,9 @@ private:
                     },
                     bins, lists);
                 if (d.kind == Decision::Leaf) {
-                    leaf(r);
-                    ++leaf_count;
+                    leaf(r, s);
                     break;
                 }
-                Range left{};
                 Range& right = stack[sp++];
                 right = Range{};
                 std::uint32_t m = r.begin;
@@ -480,29 +528,32 @@ private:
                 } else {
                     m = median_split(r, d.axis, left, right);
                 }
-                set_children(r, m, in_tmp, left, right);
-                interior(r, m);
-                r.box = left.box;
-                r.cbox = left.cbox;
-                r.end = left.end;
-                r.slot = left.slot;
-                r.depth = left.depth;
-                r.in_tmp = left.in_tmp;
+                set_children(r, m, in_tmp, interior(r, s), false, left, right);
+                continue_left(r, left);
             }
         }
-        leaves += leaf_count;
-        return leaf_count;
+    }
+
+    // The subtree loop goes on with r's left child, field by field (see subtree()).
+    static void continue_left(Range& r, const Range& left) {
+        r.box = left.box;
+        r.cbox = left.cbox;
+        r.end = left.end;
+        r.parent = left.parent;
+        r.parent_top = false;
+        r.side = 0;
+        r.depth = left.depth;
+        r.in_tmp = left.in_tmp;
     }
 };
 
 }  // namespace
 
-Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& opt) {
+Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& opt, BvhNodes& nodes) {
     const std::size_t n = vertices.size() / 3;
     Tree tree;
     tree.ref_count = n;
     tree.refs = big_array<Ref>(n);  // left uninitialised: the threads below touch it first
-    tree.nodes = big_array<TreeNode>(2 * n);
     const BigArray<Ref> tmp = big_array<Ref>(n);
 
     // Records, root bounds, and the first non-finite triangle, per chunk of
@@ -549,15 +600,28 @@ Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& o
     }
     root.begin = 0;
     root.end = std::uint32_t(n);
-    root.slot = 0;
+    root.parent = kNoParent;
     root.depth = 1;
-    root.in_tmp = false;
-    Builder builder(opt, refs, tmp.get(), tree.nodes.get());
-    builder.build(root);
-    tree.leaf_count = builder.leaves;
-    tree.subtrees = std::move(builder.subtrees);
-    tree.top_interior = builder.top_interior;
+    root.side = 0;
+    root.in_tmp = root.parent_top = false;
+    Builder builder(opt, refs, tmp.get(), std::max(area(root.box), 1e-30f));
+    builder.build(root, nodes, tree);
     return tree;
+}
+
+void compact_blocks(const Tree& tree, BvhNodes& nodes) {
+    BvhNode64* all = nodes.data();
+    for (const Block& b : tree.blocks) {
+        const BvhNode64* src = all + b.from;
+        BvhNode64* dst = all + b.to;
+        const int offset = int(b.to);
+        for (std::size_t i = 0; i < b.count; ++i) {
+            BvhNode64 x = src[i];
+            if (x.child0 >= 0) x.child0 += offset;
+            if (x.child1 >= 0) x.child1 += offset;
+            dst[i] = x;
+        }
+    }
 }
 
 }  // namespace clpath::bvh_build

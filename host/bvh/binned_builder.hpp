@@ -1,16 +1,18 @@
 #pragma once
-// The binned-SAH builder behind build_bvh (bvh.hpp): a binary tree over
-// triangle references, before flattening into the device layout.
+// The binned-SAH builder behind build_bvh (bvh.hpp): the device's binary
+// layout (BvhNode64, a node holding its two children's boxes) written as the
+// tree is built, with no intermediate tree to flatten.
 //
 // Memory: one 32-byte record per triangle (its box and index), and a second
 // array of them: a split scatters its node's records from one to the other
 // (a median split reorders them in place); a leaf's end in the first. The
-// tree's nodes live in one array allocated up front. A subtree over n
-// triangles whose root is slot s owns slots [s, s + 2n - 1) (a binary tree
-// with at least one triangle per leaf has at most 2n - 1 nodes): its left
-// subtree starts at s + 1, its right at s + 2 * (left triangle count). So no
-// node is allocated on the heap, threads never share a slot, and the tree's
-// layout does not depend on which thread built what.
+// nodes over many triangles (the top levels, built by all threads together)
+// are kept apart and numbered level by level; each smaller subtree is built
+// by one thread, numbered depth first (a node, its left subtree, its right),
+// into a block of the output reserved for the most nodes it can have (one
+// fewer than its triangles), and the blocks are then packed left to right
+// (compact_blocks). So no node is allocated on the heap, threads never share
+// a node, and the layout does not depend on which thread built what.
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -30,32 +32,31 @@ struct alignas(16) Ref {
     float pad;
 };
 
-// 32 bytes: two to a cache line.
-struct TreeNode {
-    float lo[3], hi[3];
-    std::uint32_t link;   // leaf: its first record; interior: the right child's slot (the left's is the next)
-    std::uint32_t count;  // leaf: records; 0 for an interior node
-};
-static_assert(sizeof(TreeNode) == 32);
-
-// A subtree one thread built whole (the tree above them: the large nodes).
-struct Subtree {
-    std::uint32_t slot = 0, begin = 0;
-    int depth = 1;           // of its root, the tree's root = 1
-    std::size_t leaves = 0;  // in it
+// A subtree's nodes as built, at nodes[from, from + count), their interior
+// children numbered from 0 within it; they belong at nodes[to, to + count).
+struct Block {
+    std::size_t from = 0, to = 0, count = 0;
 };
 
 struct Tree {
-    BigArray<TreeNode> nodes;  // slot 0 is the root; unused slots are left unwritten
-    BigArray<Ref> refs;        // in leaf order
+    BigArray<Ref> refs;  // in leaf order
     std::size_t ref_count = 0;
+    std::size_t node_count = 0;  // BvhNode64s, once the blocks are packed
     std::size_t leaf_count = 0;
-    std::vector<Subtree> subtrees;  // left to right (by first record)
-    std::size_t top_interior = 0;   // interior nodes above the subtrees
+    int max_depth = 0;    // of the BvhNode64s, the root = 1
+    double sah_cost = 0;  // over the root's area
+    std::vector<Block> blocks;  // left to right; to <= from, increasing
 };
 
-// options: validated, threads >= 1. Throws clpath::Error for a non-finite vertex.
-Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& options);
+// options: validated, threads >= 1. Writes the nodes above the subtrees and
+// each subtree's block into nodes (resized to what the blocks need before
+// packing). Throws clpath::Error for a non-finite vertex.
+Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& options, BvhNodes& nodes);
+
+// Moves the blocks to where they belong, left to right (each moves left, so
+// one pass in order overwrites nothing still to be read), offsetting their
+// interior children. nodes[0, tree.node_count) is then the tree.
+void compact_blocks(const Tree& tree, BvhNodes& nodes);
 
 // f(t) for t in [0, threads): t = 0 on the calling thread, the others on their own.
 // Throws clpath::Error when a thread cannot be started.

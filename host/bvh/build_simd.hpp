@@ -2,6 +2,7 @@
 // Four floats at once for the BVH builder's inner loops (box growth, centroid
 // bins): SSE2 on x86-64, plain arrays elsewhere. Only what the builder needs.
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 #if defined(__SSE2__)
@@ -50,6 +51,12 @@ inline float area_of_extent(F4 e) {
     const __m128 p = _mm_mul_ps(e.v, _mm_shuffle_ps(e.v, e.v, _MM_SHUFFLE(3, 0, 2, 1)));  // xy, yz, zx
     const __m128 s = _mm_add_ss(_mm_add_ss(p, _mm_shuffle_ps(p, p, 1)), _mm_shuffle_ps(p, p, 2));
     return 2.0f * _mm_cvtss_f32(s);
+}
+// 16 bytes at p (any alignment): a's x, y, z lanes, then the 4 bytes of w.
+inline void store3_with(float* p, F4 a, std::uint32_t w) {
+    const __m128 wv = _mm_castsi128_ps(_mm_cvtsi32_si128(int(w)));
+    const __m128 zw = _mm_shuffle_ps(a.v, wv, _MM_SHUFFLE(0, 0, 2, 2));  // z, z, w, w
+    _mm_storeu_ps(p, _mm_shuffle_ps(a.v, zw, _MM_SHUFFLE(2, 0, 1, 0)));
 }
 inline float lane(F4 a, int i) {
     alignas(16) float e[4];
@@ -103,6 +110,10 @@ inline void bin_index3(F4 x, F4 top, int& k0, int& k1, int& k2) {
     k0 = k[0], k1 = k[1], k2 = k[2];
 }
 inline float area_of_extent(F4 e) { return 2.0f * (e.v[0] * e.v[1] + e.v[1] * e.v[2] + e.v[2] * e.v[0]); }
+inline void store3_with(float* p, F4 a, std::uint32_t w) {
+    for (int i = 0; i < 3; ++i) p[i] = a.v[i];
+    std::memcpy(p + 3, &w, 4);
+}
 inline float lane(F4 a, int i) { return a.v[i]; }
 inline int ge_mask(F4 a, F4 b) {
     int m = 0;
@@ -119,6 +130,18 @@ inline F4 select4(F4 mask, F4 a, F4 b) {
     return r;
 }
 #endif
+
+// c where keep, else +infinity, without a branch (a select on the bits).
+inline float keep_or_inf(bool keep, float c) {
+    const float infinity = std::numeric_limits<float>::infinity();
+    std::uint32_t b, inf;
+    std::memcpy(&b, &c, 4);
+    std::memcpy(&inf, &infinity, 4);
+    const std::uint32_t m = 0u - std::uint32_t(keep);
+    b = (b & m) | (inf & ~m);
+    std::memcpy(&c, &b, 4);
+    return c;
+}
 
 // An axis-aligned box; lane 3 is ignored.
 struct Box4 {

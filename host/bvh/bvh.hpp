@@ -1,6 +1,6 @@
 #pragma once
 // The bounding volume hierarchy: a binned-SAH builder over triangle bounds,
-// flattened into the device layout of kernels/shared_structs.h.
+// writing the device layout of kernels/shared_structs.h.
 #include <cstddef>
 #include <memory>
 #include <new>
@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "bvh/big_arrays.hpp"
 #include "shared_structs.h"
 
 namespace clpath {
@@ -34,6 +35,9 @@ struct BvhStats {
 // itself, from several threads, and zero-filling tens of MiB first was a
 // single-threaded pass over fresh pages (room:1003542, Xeon: 13-20 ms of a
 // 330 ms build). Code that wants zeros says so: resize(n, BvhNode64{}).
+// From 2 MiB up, aligned to huge pages and advised to use them, as the
+// builder's own arrays (bvh/big_arrays.hpp): unaligned, a 4 MiB node array
+// took ~800 more page faults per build on bunny (70k triangles).
 template <class T>
 struct UninitAllocator : std::allocator<T> {
     template <class U>
@@ -43,6 +47,16 @@ struct UninitAllocator : std::allocator<T> {
     UninitAllocator() = default;
     template <class U>
     UninitAllocator(const UninitAllocator<U>&) noexcept {}
+    T* allocate(std::size_t n) {
+        if (n * sizeof(T) < bvh_build::kHugePage) return std::allocator<T>::allocate(n);
+        return bvh_build::big_array<T>(n).release();
+    }
+    void deallocate(T* p, std::size_t n) noexcept {
+        if (n * sizeof(T) < bvh_build::kHugePage)
+            std::allocator<T>::deallocate(p, n);
+        else
+            bvh_build::FreeDelete{}(p);
+    }
     template <class U>
     void construct(U* p) noexcept {
         ::new (static_cast<void*>(p)) U;
