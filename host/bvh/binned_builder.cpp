@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <deque>
 #include <exception>
@@ -88,9 +89,14 @@ struct Sub {
 // A child's slot in its parent: its box, and its node's index (count 0) or
 // its first record's complement and record count (a leaf), as two 16-byte
 // rows (kernels/shared_structs.h: index and count are the rows' fourth fields).
+// The row by arithmetic (slot 1 is 8 floats after slot 0): as a choice
+// between lo0 and lo1, a branch on the side missed every few nodes.
 void set_slot(BvhNode64& p, int side, const Box4& b, int child, std::uint32_t count) {
-    store3_with(side ? p.lo1 : p.lo0, b.lo, std::uint32_t(child));
-    store3_with(side ? p.hi1 : p.hi0, b.hi, count);
+    static_assert(offsetof(BvhNode64, hi0) == 16 && offsetof(BvhNode64, lo1) == 32 && offsetof(BvhNode64, hi1) == 48,
+                  "slot 1's rows are 8 floats after slot 0's");
+    float* row = p.lo0 + 8 * side;
+    store3_with(row, b.lo, std::uint32_t(child));
+    store3_with(row + 4, b.hi, count);
 }
 
 // What a node does: become a leaf, split at an SAH bin boundary, or split at the median.
@@ -213,10 +219,14 @@ private:
     bool force_median(const Range& r) const {
         const std::uint32_t n = r.end - r.begin;
         const int levels_left = CLP_BVH_MAX_DEPTH - r.depth;
-        // balanced_needs = ceil(log2(n / max_leaf_size)) + 1, in integers.
-        int balanced_needs = 1;
-        for (std::uint64_t cap = std::uint64_t(opt_.max_leaf_size); cap < n; cap *= 2) ++balanced_needs;
-        return balanced_needs >= levels_left;
+        // balanced_needs = ceil(log2(n / max_leaf_size)) + 1: one more than
+        // the doublings of the leaf size that reach n, the bit length of
+        // ceil(n / max_leaf_size) - 1 (a loop's varying trip count missed
+        // a branch every few nodes).
+        const std::uint64_t leaves = (std::uint64_t(n) + std::uint64_t(opt_.max_leaf_size) - 1) /
+                                     std::uint64_t(opt_.max_leaf_size);
+        const int doublings = leaves <= 1 ? 0 : 64 - __builtin_clzll(leaves - 1);
+        return 1 + doublings >= levels_left;
     }
 
     // Leaf, SAH split or median split for node r, whose triangles
