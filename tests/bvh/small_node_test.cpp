@@ -6,6 +6,7 @@
 
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "bvh/partition.hpp"
 #include "bvh/sah_sweep.hpp"
 #include "bvh/small_node.hpp"
+#include "support/box_bits.hpp"
 
 using namespace clpath::bvh_build;
 
@@ -45,17 +47,6 @@ std::vector<Ref> records(int n, bool overlap, std::mt19937& rng) {
         x.pad = 0;
     }
     return r;
-}
-
-bool same_bits(const Box4& a, const Box4& b) {
-    alignas(16) float x[8], y[8];
-    store4(x, a.lo);
-    store4(x + 4, a.hi);
-    store4(y, b.lo);
-    store4(y + 4, b.hi);
-    for (int i : {0, 1, 2, 4, 5, 6})
-        if (std::memcmp(&x[i], &y[i], 4) != 0) return false;
-    return true;
 }
 
 // The binned path, as binned_builder.cpp's decide() and subtree() take it.
@@ -119,10 +110,10 @@ TEST(SmallNode, SplitsAsTheBinnedPathDoes) {
         if (want.kind != SmallSplit::Split) continue;
         ASSERT_EQ(got.mid, want.mid) << "trial " << trial;
         ASSERT_EQ(std::memcmp(got_dst.data(), want_dst.data(), src.size() * sizeof(Ref)), 0) << "trial " << trial;
-        EXPECT_TRUE(same_bits(got.left_box, want.left_box)) << "trial " << trial;
-        EXPECT_TRUE(same_bits(got.right_box, want.right_box)) << "trial " << trial;
-        EXPECT_TRUE(same_bits(got.left_cbox, want.left_cbox)) << "trial " << trial;
-        EXPECT_TRUE(same_bits(got.right_cbox, want.right_cbox)) << "trial " << trial;
+        EXPECT_TRUE(clpath::test::same_box_bits(got.left_box, want.left_box)) << "trial " << trial;
+        EXPECT_TRUE(clpath::test::same_box_bits(got.right_box, want.right_box)) << "trial " << trial;
+        EXPECT_TRUE(clpath::test::same_box_bits(got.left_cbox, want.left_cbox)) << "trial " << trial;
+        EXPECT_TRUE(clpath::test::same_box_bits(got.right_cbox, want.right_cbox)) << "trial " << trial;
     }
     // Every outcome met often: the comparison above is not of one kind only.
     for (int k = 0; k < 3; ++k) EXPECT_GT(kinds[k], 200) << "outcome " << k;
@@ -133,6 +124,6 @@ TEST(SmallNode, ComparesBoxesToTheBit) {
     Box4 a, b;
     a.grow_point(splat(0.0f));
     b.grow_point(splat(-0.0f));
-    EXPECT_FALSE(same_bits(a, b));
-    EXPECT_TRUE(same_bits(a, a));
+    EXPECT_FALSE(clpath::test::same_box_bits(a, b));
+    EXPECT_TRUE(clpath::test::same_box_bits(a, a));
 }
