@@ -52,7 +52,7 @@ def main():
     add(f"- Command: `TINYBVH_DIR=<tinybvh checkout> ROUNDS={meta['rounds']} benchmarks/bvh_build/run.sh <this folder's "
         "name>`; every entry is the median of 3 builds in one process (`log.txt`, `runs.csv`, `tinybvh-runs.csv`).")
     add("- SAH cost: the same measure for both (each interior node's area plus each leaf's area times its triangles, "
-        "over the root's area; host/bvh/build.cpp and the harness's `facts`).")
+        "over the root's area; host/bvh/binned_builder.cpp and the harness's `facts`).")
     add("")
     head = "| scene | triangles | clpath ms | clpath SAH | " + " | ".join(
         f"{b} ms | {b} SAH | clpath speed / {b}" for b in builders) + " |"

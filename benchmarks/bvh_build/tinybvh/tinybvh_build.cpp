@@ -35,7 +35,7 @@ struct TreeFacts {
     std::uint32_t nodes = 0, leaves = 0, max_leaf = 0, depth = 0;
 };
 
-// clpath's SAH measure (host/bvh/build.cpp): each interior node's area, each
+// clpath's SAH measure (host/bvh/binned_builder.cpp): each interior node's area, each
 // leaf's area times its triangles, over the root's area. tinybvh's SAHCost
 // with c_trav = c_int = 1 is the same sum; walked here so that the facts beside it come from one pass.
 TreeFacts facts(const tinybvh::BVH& bvh) {
