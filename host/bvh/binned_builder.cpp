@@ -466,8 +466,16 @@ private:
     }
 
     // A whole subtree on one thread: depth first, each SAH partition scattered
-    // into the other array (a median split stays in place), its nodes into s.
-    void subtree(const Range& root, Bins& bins, Sub& s) {
+    // into the other array (a median split stays in place), its nodes into out.
+    // Counted in a copy on this thread's stack, stored once: the tasks' Subs
+    // share cache lines, and another thread's task may be next to this one.
+    void subtree(const Range& root, Bins& bins, Sub& out) {
+        Sub s = out;
+        build_subtree(root, bins, s);
+        out = s;
+    }
+
+    void build_subtree(const Range& root, Bins& bins, Sub& s) {
         Range stack[2 * CLP_BVH_MAX_DEPTH + 4];
         BinList lists[3];
         int sp = 0;
