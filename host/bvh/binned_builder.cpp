@@ -4,55 +4,16 @@
 #include <atomic>
 #include <cmath>
 #include <cstddef>
-#include <cstring>
 #include <deque>
-#include <exception>
 #include <functional>
-#include <mutex>
-#include <string>
-#include <system_error>
-#include <thread>
 
 #include "bvh/binning.hpp"
 #include "bvh/partition.hpp"
 #include "bvh/sah_sweep.hpp"
 #include "bvh/small_node.hpp"
 #include "bvh/build_simd.hpp"
-#include "util/error.hpp"
 
 namespace clpath::bvh_build {
-
-void fork_join(int threads, const std::function<void(int)>& f) {
-    if (threads <= 1) {
-        f(0);
-        return;
-    }
-    // An exception must not leave a thread: one escaping a worker would end
-    // the program (std::terminate), and one from the calling thread would
-    // leave the workers unjoined (the same). Each is caught, every thread
-    // joined, and the first rethrown here.
-    std::mutex mutex;
-    std::exception_ptr first;
-    auto guarded = [&](int t) {
-        try {
-            f(t);
-        } catch (...) {
-            std::lock_guard<std::mutex> lock(mutex);
-            if (!first) first = std::current_exception();
-        }
-    };
-    std::vector<std::thread> pool;
-    pool.reserve(std::size_t(threads - 1));
-    try {
-        for (int t = 1; t < threads; ++t) pool.emplace_back(guarded, t);
-    } catch (const std::system_error& e) {
-        for (auto& th : pool) th.join();
-        throw Error(std::string("BVH build: cannot start a thread (") + e.what() + ")");
-    }
-    guarded(0);
-    for (auto& th : pool) th.join();
-    if (first) std::rethrow_exception(first);
-}
 
 namespace {
 
@@ -574,55 +535,17 @@ Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& o
     tree.refs = big_array<Ref>(n);  // left uninitialised: the threads below touch it first
     const BigArray<Ref> tmp = big_array<Ref>(n);
 
-    // Records, root bounds, and the first non-finite triangle, per chunk of
-    // kChunk triangles, handed out one at a time (as the top levels' chunks).
-    const int T = opt.threads;
-    const std::size_t C = (n + kChunk - 1) / kChunk;
-    std::vector<Box4> box(C), cbox(C);
-    std::vector<std::size_t> bad(C, n);
-    Ref* refs = tree.refs.get();
-    std::atomic<std::size_t> next_chunk{0};
-    fork_join(int(std::min<std::size_t>(std::size_t(T), C)), [&](int) {
-        for (std::size_t k; (k = next_chunk.fetch_add(1)) < C;) {
-            Box4 b, c;
-            for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
-                const glm::vec3 &p = vertices[3 * i], &q = vertices[3 * i + 1], &s = vertices[3 * i + 2];
-                Ref& r = refs[i];
-                bool finite = true;
-                float l[3], h[3];
-                for (int a = 0; a < 3; ++a) {
-                    l[a] = r.lo[a] = std::min({p[a], q[a], s[a]});
-                    h[a] = r.hi[a] = std::max({p[a], q[a], s[a]});
-                    finite = finite && std::isfinite(p[a]) && std::isfinite(q[a]) && std::isfinite(s[a]);
-                }
-                if (!finite && bad[k] == n) bad[k] = i;
-                r.prim = std::uint32_t(i);
-                r.pad = 0;
-                // From registers: reading the record back as 16 bytes just
-                // after its 4-byte prim and pad were stored stalled every
-                // record (a store cannot be forwarded to a wider load).
-                const F4 lo = set4(l[0], l[1], l[2], 0.0f), hi = set4(h[0], h[1], h[2], 0.0f);
-                b.grow(lo, hi);
-                c.grow_point(centroid(lo, hi));
-            }
-            box[k] = b;
-            cbox[k] = c;
-        }
-    });
-    for (std::size_t i : bad)  // chunks in order: the first one found is the lowest index
-        if (i < n) throw Error("BVH build: triangle " + std::to_string(i) + " has a non-finite vertex coordinate");
+    const RootBounds rb = make_records(vertices, opt.threads, tree.refs.get());
     Range root{};
-    for (std::size_t k = 0; k < C; ++k) {
-        root.box.grow(box[k]);
-        root.cbox.grow(cbox[k]);
-    }
+    root.box = rb.box;
+    root.cbox = rb.cbox;
     root.begin = 0;
     root.end = std::uint32_t(n);
     root.parent = kNoParent;
     root.depth = 1;
     root.side = 0;
     root.in_tmp = root.parent_top = false;
-    Builder builder(opt, refs, tmp.get(), std::max(area(root.box), 1e-30f));
+    Builder builder(opt, tree.refs.get(), tmp.get(), std::max(area(root.box), 1e-30f));
     builder.build(root, nodes, tree);
     return tree;
 }

@@ -14,7 +14,6 @@
 // (compact_blocks). So no node is allocated on the heap, threads never share
 // a node, and the layout does not depend on which thread built what.
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <vector>
 
@@ -22,15 +21,10 @@
 
 #include "bvh/big_arrays.hpp"
 #include "bvh/bvh.hpp"
+#include "bvh/fork_join.hpp"
+#include "bvh/records.hpp"
 
 namespace clpath::bvh_build {
-
-struct alignas(16) Ref {
-    float lo[3];
-    std::uint32_t prim;  // the triangle's index in the input
-    float hi[3];
-    float pad;
-};
 
 // A subtree's nodes as built, at nodes[from, from + count), their interior
 // children numbered from 0 within it; they belong at nodes[to, to + count).
@@ -57,9 +51,5 @@ Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& o
 // one pass in order overwrites nothing still to be read), offsetting their
 // interior children. nodes[0, tree.node_count) is then the tree.
 void compact_blocks(const Tree& tree, BvhNodes& nodes);
-
-// f(t) for t in [0, threads): t = 0 on the calling thread, the others on their own.
-// Throws clpath::Error when a thread cannot be started.
-void fork_join(int threads, const std::function<void(int)>& f);
 
 }  // namespace clpath::bvh_build

@@ -3,7 +3,7 @@
 // triangles on all three axes, and the map from a centroid to its bin.
 #include <cstdint>
 
-#include "bvh/binned_builder.hpp"
+#include "bvh/records.hpp"
 #include "bvh/build_simd.hpp"
 
 namespace clpath::bvh_build {

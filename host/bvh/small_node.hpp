@@ -2,11 +2,12 @@
 // Nodes over a few triangles, split without bins: the decision and the
 // partition the binned path (binned_builder.cpp: bin_refs_sparse, the SAH
 // sweep, partition_refs) makes for them, found by sorting the records by bin.
-// A node over 3 to 15 triangles, half of all nodes, cost that path ~2,300
-// instructions, most of them filling and sweeping bins nobody else reads.
+// Nodes over 3 to 15 triangles, half of all nodes, cost that path ~2,300
+// instructions each, most of them filling and sweeping bins nobody else
+// reads; this file takes those up to kSmallNodeMax (wider sizes did not pay).
 #include <cstdint>
 
-#include "bvh/binned_builder.hpp"
+#include "bvh/records.hpp"
 #include "bvh/build_simd.hpp"
 
 namespace clpath::bvh_build {

@@ -1,4 +1,4 @@
-// fork_join (bvh/binned_builder.hpp), the builder's threads: every index runs
+// fork_join (bvh/fork_join.hpp), the builder's threads: every index runs
 // once, and an exception from any thread, the calling one included, comes back
 // to the caller after every thread has been joined, instead of ending the
 // program.
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "bvh/binned_builder.hpp"
+#include "bvh/fork_join.hpp"
 
 namespace clpath::bvh_build {
 namespace {
