@@ -528,12 +528,12 @@ private:
 
 }  // namespace
 
-Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& opt, BvhNodes& nodes) {
+Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& opt, BvhNodes& nodes,
+                Ref* scatter) {
     const std::size_t n = vertices.size() / 3;
     Tree tree;
     tree.ref_count = n;
     tree.refs = big_array<Ref>(n);  // left uninitialised: the threads below touch it first
-    const BigArray<Ref> tmp = big_array<Ref>(n);
 
     const RootBounds rb = make_records(vertices, opt.threads, tree.refs.get());
     Range root{};
@@ -545,7 +545,7 @@ Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& o
     root.depth = 1;
     root.side = 0;
     root.in_tmp = root.parent_top = false;
-    Builder builder(opt, tree.refs.get(), tmp.get(), std::max(area(root.box), 1e-30f));
+    Builder builder(opt, tree.refs.get(), scatter, std::max(area(root.box), 1e-30f));
     builder.build(root, nodes, tree);
     return tree;
 }

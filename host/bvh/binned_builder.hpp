@@ -4,7 +4,8 @@
 // tree is built, with no intermediate tree to flatten.
 //
 // Memory: one 32-byte record per triangle (its box and index), and a second
-// array of them: a split scatters its node's records from one to the other
+// array of them, in storage the caller lends (build_bvh: the output
+// triangles', not yet written): a split scatters its node's records from one to the other
 // (a median split reorders them in place); a leaf's end in the first. The
 // nodes over many triangles (the top levels, built by all threads together)
 // are kept apart and numbered level by level; each smaller subtree is built
@@ -44,8 +45,10 @@ struct Tree {
 
 // options: validated, threads >= 1. Writes the nodes above the subtrees and
 // each subtree's block into nodes (resized to what the blocks need before
-// packing). Throws clpath::Error for a non-finite vertex.
-Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& options, BvhNodes& nodes);
+// packing). scatter: room for one record per triangle, the second array of
+// records, left holding nothing of use. Throws clpath::Error for a non-finite vertex.
+Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& options, BvhNodes& nodes,
+                Ref* scatter);
 
 // Moves the blocks to where they belong, left to right (each moves left, so
 // one pass in order overwrites nothing still to be read), offsetting their
