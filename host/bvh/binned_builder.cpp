@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <deque>
 #include <functional>
+#include <mutex>
 
 #include "bvh/binning.hpp"
 #include "bvh/partition.hpp"
@@ -80,52 +81,87 @@ public:
             level.swap(next);
             next.clear();
         }
-        // Each subtree's block where the most nodes it can have fit, left to right.
+        // Largest first, so the last task to start is a small one; the
+        // subtrees' nodes follow the top levels' in the same order.
         std::sort(tasks.begin(), tasks.end(), [](const Range& a, const Range& b) { return a.begin < b.begin; });
         const std::size_t K = tasks.size(), top = top_.size();
-        std::vector<std::size_t> base(K);
-        std::size_t reserved = top;
-        for (std::size_t k = 0; k < K; ++k) {
-            base[k] = reserved;
-            reserved += tasks[k].end - tasks[k].begin - 1;
-        }
-        reserved = std::max<std::size_t>(reserved, 1);  // a root leaf still has a node
-        nodes.resize(reserved);  // left unwritten, on huge pages (UninitAllocator)
-        // Largest first, so the last task to start is a small one.
         std::vector<std::size_t> order(K);
         for (std::size_t k = 0; k < K; ++k) order[k] = k;
         std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
             const std::uint32_t na = tasks[a].end - tasks[a].begin, nb = tasks[b].end - tasks[b].begin;
             return na > nb || (na == nb && a < b);
         });
+        // Room for the most nodes the subtrees can have (one fewer than their
+        // triangles each); only what they use is written, so the pages past
+        // it are never touched.
+        std::size_t most = top;
+        for (const Range& r : tasks) most += r.end - r.begin - 1;
+        nodes.resize(std::max<std::size_t>(most, 1));  // left unwritten, on huge pages (UninitAllocator)
+        // Each task builds into a scratch block of its own, hot in its
+        // thread's cache, and the blocks are moved to the output in task
+        // order as soon as every earlier task's has been (tasks start in
+        // that order, so few wait): no block is written to the output
+        // before its place there is known, and the output is the same
+        // whatever the threads.
         std::vector<Sub> subs(K);
-        for (std::size_t k = 0; k < K; ++k) subs[k].block = nodes.data() + base[k];
+        std::vector<BigArray<BvhNode64>> scratch(K), spare;
+        std::vector<char> done(K, 0);
+        std::mutex mutex;
+        std::size_t moved = 0, at = top;
+        auto move_ready = [&] {  // under mutex
+            for (; moved < K && done[moved]; ++moved) {
+                const std::size_t k = order[moved];
+                Sub& s = subs[k];
+                if (s.next > 0) {
+                    const int offset = int(at);
+                    for (std::uint32_t i = 0; i < s.next; ++i) {
+                        BvhNode64 x = s.block[i];
+                        if (x.child0 >= 0) x.child0 += offset;
+                        if (x.child1 >= 0) x.child1 += offset;
+                        nodes[at + i] = x;
+                    }
+                    if (tasks[k].parent != kNoParent) {
+                        BvhNode64& p = top_[tasks[k].parent];
+                        (tasks[k].side ? p.child1 : p.child0) = offset;
+                    }
+                    at += s.next;
+                }
+                spare.push_back(std::move(scratch[k]));
+                s.block = nullptr;
+            }
+        };
         std::atomic<std::size_t> next_task{0};
         const int workers = int(std::min<std::size_t>(std::size_t(opt_.threads), K));
         std::vector<std::unique_ptr<Bins>> worker_bins(std::size_t(std::max(workers, 1)));
         for (auto& b : worker_bins) b = std::make_unique<Bins>();
         fork_join(workers, [&](int w) {
-            for (std::size_t i; (i = next_task.fetch_add(1)) < K;)
-                subtree(tasks[order[i]], *worker_bins[w], subs[order[i]]);
+            for (std::size_t i; (i = next_task.fetch_add(1)) < K;) {
+                const std::size_t k = order[i];
+                {
+                    std::lock_guard<std::mutex> lock(mutex);
+                    if (!spare.empty()) {
+                        scratch[k] = std::move(spare.back());
+                        spare.pop_back();
+                    }
+                }
+                // A task has fewer records than kBigNode; a tree of one task, maybe far fewer.
+                if (!scratch[k])
+                    scratch[k] = big_array<BvhNode64>(K > 1 ? kBigNode - 1 : std::max<std::size_t>(most - top, 1));
+                subs[k].block = scratch[k].get();
+                subtree(tasks[k], *worker_bins[w], subs[k]);
+                std::lock_guard<std::mutex> lock(mutex);
+                done[i] = 1;
+                move_ready();
+            }
         });
-        // Where the blocks go, and the top levels' links to their roots; the
-        // sums in a fixed order (top levels, then left to right).
+        // The sums in a fixed order (top levels, then left to right).
         t.sah_cost = top_cost_;
         t.max_depth = top_depth_;
         t.leaf_count = 0;
-        std::size_t at = top;
-        for (std::size_t k = 0; k < K; ++k) {
-            const Sub& s = subs[k];
+        for (const Sub& s : subs) {
             t.sah_cost += s.cost;
             t.leaf_count += s.leaves;
             t.max_depth = std::max(t.max_depth, s.max_depth);
-            if (s.next == 0) continue;  // a leaf: its parent holds it
-            if (tasks[k].parent != kNoParent) {
-                BvhNode64& p = top_[tasks[k].parent];
-                (tasks[k].side ? p.child1 : p.child0) = int(at);
-            }
-            t.blocks.push_back({base[k], at, s.next});
-            at += s.next;
         }
         t.node_count = at;
         std::copy(top_.begin(), top_.end(), nodes.begin());
@@ -548,21 +584,6 @@ Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& o
     Builder builder(opt, tree.refs.get(), scatter, std::max(area(root.box), 1e-30f));
     builder.build(root, nodes, tree);
     return tree;
-}
-
-void compact_blocks(const Tree& tree, BvhNodes& nodes) {
-    BvhNode64* all = nodes.data();
-    for (const Block& b : tree.blocks) {
-        const BvhNode64* src = all + b.from;
-        BvhNode64* dst = all + b.to;
-        const int offset = int(b.to);
-        for (std::size_t i = 0; i < b.count; ++i) {
-            BvhNode64 x = src[i];
-            if (x.child0 >= 0) x.child0 += offset;
-            if (x.child1 >= 0) x.child1 += offset;
-            dst[i] = x;
-        }
-    }
 }
 
 }  // namespace clpath::bvh_build

@@ -46,19 +46,13 @@ Bvh build_bvh(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& opt
     const bvh_build::Tree tree = bvh_build::build_tree(vertices, opt, bvh.nodes, scatter);
     for (std::size_t i = 0; i < n; ++i) ::new (static_cast<void*>(&bvh.triangles[i])) TriVerts;  // no code either
     const bvh_build::Ref* refs = tree.refs.get();
-    // The blocks packed by one thread (in order: each moves left, over
-    // nodes already moved) while the triangles are copied by all, by chunks
-    // handed out one at a time, so a thread that starts late holds nobody up.
+    // The triangles in leaf order, by all threads, by chunks handed out one
+    // at a time, so a thread that starts late holds nobody up.
     constexpr std::size_t kChunk = 1 << 14;
     const std::size_t chunks = (n + kChunk - 1) / kChunk;
-    std::atomic<std::size_t> next_job{0};
-    bvh_build::fork_join(int(std::min<std::size_t>(std::size_t(opt.threads), chunks + 1)), [&](int) {
-        for (std::size_t job; (job = next_job.fetch_add(1)) < chunks + 1;) {
-            if (job == 0) {
-                bvh_build::compact_blocks(tree, bvh.nodes);
-                continue;
-            }
-            const std::size_t k = job - 1;
+    std::atomic<std::size_t> next_chunk{0};
+    bvh_build::fork_join(int(std::min<std::size_t>(std::size_t(opt.threads), chunks)), [&](int) {
+        for (std::size_t k; (k = next_chunk.fetch_add(1)) < chunks;) {
             for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
                 TriVerts& tv = bvh.triangles[i];
                 const std::size_t s = refs[i].prim;
