@@ -81,8 +81,9 @@ public:
             level.swap(next);
             next.clear();
         }
-        // Largest first, so the last task to start is a small one; the
-        // subtrees' nodes follow the top levels' in the same order.
+        // Tasks left to right (the order their statistics are summed in);
+        // started largest first, so the last to start is a small one, and
+        // their nodes follow the top levels' in that order.
         std::sort(tasks.begin(), tasks.end(), [](const Range& a, const Range& b) { return a.begin < b.begin; });
         const std::size_t K = tasks.size(), top = top_.size();
         std::vector<std::size_t> order(K);
