@@ -240,8 +240,14 @@ private:
         int best_axis = -1, best_bin = 0;
         if (!force_median(r) && ext[axis_long] > 0) {
             fill(bins, lists);
-            for (int a = 0; a < 3; ++a)
-                if (ext[a] > 0) sah_sweep(bins, a, lists[a], n, best_cost, best_axis, best_bin);
+            const int nb = opt_.bins;
+            if (lists[0].size == nb && lists[1].size == nb && lists[2].size == nb) {  // every bin: dense
+                const bool sweep[3] = {ext[0] > 0, ext[1] > 0, ext[2] > 0};
+                sah_sweep_all_bins(bins, nb, sweep, n, best_cost, best_axis, best_bin);
+            } else {
+                for (int a = 0; a < 3; ++a)
+                    if (ext[a] > 0) sah_sweep(bins, a, lists[a], n, best_cost, best_axis, best_bin);
+            }
             const float node_area = area(r.box);
             const float split_cost = opt_.traversal_cost + (node_area > 0 ? best_cost / node_area : 0.0f);
             if (n <= std::uint32_t(opt_.max_leaf_size) && (best_axis < 0 || float(n) <= split_cost)) return d;

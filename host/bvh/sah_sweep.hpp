@@ -15,4 +15,11 @@ namespace clpath::bvh_build {
 void sah_sweep(const Bins& bins, int a, const BinList& list, std::uint32_t n, float& best_cost, int& best_axis,
                int& best_bin);
 
+// sah_sweep over all bins (0 .. bins - 1) of the axes a with sweep[a], in
+// order a = 0, 1, 2: the same choice, bit for bit, with the three axes'
+// sweeps interleaved (three independent chains of min and max, where one
+// axis at a time waited on each step's result).
+void sah_sweep_all_bins(const Bins& bins, int nbins, const bool sweep[3], std::uint32_t n, float& best_cost,
+                        int& best_axis, int& best_bin);
+
 }  // namespace clpath::bvh_build
