@@ -56,7 +56,14 @@ Bvh build_bvh(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& opt
             for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
                 TriVerts& tv = bvh.triangles[i];
                 const std::size_t s = refs[i].prim;
-                if (i + 8 < n) __builtin_prefetch(&vertices[3 * std::size_t(refs[i + 8].prim)]);
+                // A triangle's 36 bytes may straddle two cache lines; 24
+                // ahead covers a trip to memory (8 ahead: the pass took
+                // 8.7 ms on room:1003542, Xeon, against 7.5).
+                if (i + 24 < n) {
+                    const char* p = reinterpret_cast<const char*>(&vertices[3 * std::size_t(refs[i + 24].prim)]);
+                    __builtin_prefetch(p);
+                    __builtin_prefetch(p + 3 * sizeof(glm::vec3) - 1);
+                }
                 for (int a = 0; a < 3; ++a) {
                     tv.v0[a] = vertices[3 * s][a];
                     tv.v1[a] = vertices[3 * s + 1][a];
