@@ -6,9 +6,11 @@
 #include <cstddef>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <mutex>
 
 #include "bvh/binning.hpp"
+#include "bvh/fork_join.hpp"
 #include "bvh/partition.hpp"
 #include "bvh/sah_sweep.hpp"
 #include "bvh/small_node.hpp"

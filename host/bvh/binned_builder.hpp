@@ -15,14 +15,12 @@
 // before it has been. So threads never share a node, the output is written
 // once, and the layout does not depend on which thread built what.
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "bvh/big_arrays.hpp"
 #include "bvh/bvh.hpp"
-#include "bvh/fork_join.hpp"
 #include "bvh/records.hpp"
 
 namespace clpath::bvh_build {
@@ -38,8 +36,9 @@ struct Tree {
 
 // options: validated, threads >= 1. Writes the tree into nodes[0,
 // node_count) (nodes is left longer: room for the most nodes the tree could
-// have had; the caller shrinks it). scatter: room for one record per triangle, the second array of
-// records, left holding nothing of use. Throws clpath::Error for a non-finite vertex.
+// have had; the caller shrinks it). scatter: room for one record per
+// triangle, the second array of records, left holding nothing of use.
+// Throws clpath::Error for a non-finite vertex.
 Tree build_tree(const std::vector<glm::vec3>& vertices, const BvhBuildOptions& options, BvhNodes& nodes,
                 Ref* scatter);
 

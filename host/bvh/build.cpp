@@ -10,6 +10,7 @@
 
 #include "bvh/binned_builder.hpp"
 #include "bvh/bvh.hpp"
+#include "bvh/fork_join.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
