@@ -14,6 +14,8 @@ fi
 # libembree-dev: the CPU baselines of clpath bench rays and bench path (optional at build time).
 # embree-tools: Embree's own example path tracer (`pathtracer`), the peer that
 # benchmarks/path_embree/pathtracer.sh times clpath and its Embree baseline against.
+# valgrind: benchmarks/path_embree/instructions.sh counts both path tracers'
+# instructions per ray with its callgrind tool.
 # libsdl2-dev, libsdl2-image-dev, libsdl2-ttf-dev: trac0r, the thesis path tracer
 # that benchmarks/trac0r/run.sh builds from its own source and times clpath against.
 # libopenmpi-dev, openmpi-bin: rendering over MPI ranks (optional at build
@@ -41,7 +43,7 @@ packages="
     libdraco-dev libmeshoptimizer-dev gltfpack
     xvfb xauth libimgui-dev glmark2-data
     python3-numpy python3-matplotlib python3-venv
-    libembree-dev embree-tools
+    libembree-dev embree-tools valgrind
     libsdl2-dev libsdl2-image-dev libsdl2-ttf-dev
     libopenmpi-dev openmpi-bin
 "

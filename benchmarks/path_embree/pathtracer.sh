@@ -171,6 +171,25 @@ add(f"The built-in Embree path tracer in default mode over Embree's `pathtracer`
     f"over the built-in tracer in default mode: {ratio('clpath_render', 'builtin_embree_default'):.3f}, "
     f"robust: {ratio('clpath_render', 'builtin_embree_robust'):.3f}.")
 add("")
+# This machine moves by a quarter between processes: how far the rounds spread says how far a median can be trusted.
+def quartiles(xs):
+    q = statistics.quantiles(xs, n=4) if len(xs) > 1 else [xs[0]] * 3
+    return q[0], q[2]
+add("How far the rounds spread: each round's ratio over Embree's `pathtracer` (Mrays/s), with quartiles.")
+add("")
+add("| tracer | quartiles | per round |")
+add("|---|---|---|")
+for key, label in names[:4]:
+    xs = [float(by[key][k]["mrays_per_s"]) / float(by["embree_pathtracer"][k]["mrays_per_s"]) for k in rounds
+          if k in by[key] and k in by["embree_pathtracer"]]
+    if xs:
+        lo, hi = quartiles(xs)
+        add(f"| {label} | {lo:.3f}-{hi:.3f} | {' '.join(f'{x:.3f}' for x in xs)} |")
+pt = [float(by["embree_pathtracer"][k]["mrays_per_s"]) for k in rounds if k in by["embree_pathtracer"]]
+if pt:
+    add("")
+    add(f"Embree's `pathtracer` alone ran {min(pt):.1f} to {max(pt):.1f} Mrays/s from round to round.")
+add("")
 open(f"{out}/README.md", "w").write("\n".join(L) + "\n")
 print("\n".join(L))
 PY
