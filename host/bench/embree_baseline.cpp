@@ -89,7 +89,7 @@ public:
 
     std::string describe() const override {
         char buf[200];
-        std::snprintf(buf, sizeof buf, "Embree %s, %s, high-quality BVH%s, %d thread%s, built in %.0f ms",
+        std::snprintf(buf, sizeof buf, "Embree %s, %s, high-quality BVH%s, %d thread%s (FTZ/DAZ), built in %.0f ms",
                       RTC_VERSION_STRING, describe_embree_mode(embree_.mode()).c_str(),
                       instanced_ ? "s placed by instances" : "", embree_.threads(),
                       embree_.threads() == 1 ? "" : "s", embree_.build_ms());
@@ -108,6 +108,7 @@ private:
         for (int p = 0; p <= passes; ++p) {
             std::atomic<std::size_t> next{0};
             auto work = [&] {
+                const EmbreeThreadFloatMode ftz_daz;
                 for (std::size_t b; (b = next.fetch_add(kBlock)) < n;) trace(b, std::min(n, b + kBlock));
             };
             const auto t0 = std::chrono::steady_clock::now();

@@ -33,7 +33,7 @@ public:
                                  std::vector<float>& t) = 0;
     // Whether anything lies on each ray in [0, tmax].
     virtual EmbreeTiming any(const std::vector<BatchRay>& rays, int passes, std::vector<char>& occluded) = 0;
-    // "Embree 3.13.5, default mode (no RTC_SCENE_FLAG_ROBUST), high-quality BVH, 2 threads, built in 812 ms"
+    // "Embree 3.13.5, default mode (no RTC_SCENE_FLAG_ROBUST), high-quality BVH, 2 threads (FTZ/DAZ), built in 812 ms"
     virtual std::string describe() const = 0;
     virtual EmbreeMode mode() const = 0;
 };

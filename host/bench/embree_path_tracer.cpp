@@ -127,6 +127,7 @@ public:
         std::atomic<int> next{0};
         std::atomic<std::uint64_t> rays{0}, nonfinite{0};
         auto work = [&] {
+            const EmbreeThreadFloatMode ftz_daz;
             std::uint64_t my_rays = 0, my_nonfinite = 0;
             for (int tile; (tile = next.fetch_add(1)) < tiles;) {
                 const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
@@ -178,7 +179,7 @@ public:
     std::string describe() const override {
         return std::string("Embree ") + RTC_VERSION_STRING + ", " + describe_embree_mode(embree_->mode()) + ", " +
                std::to_string(embree_->threads()) + " thread" + (embree_->threads() == 1 ? "" : "s") + " on " +
-               cpu_model_name() + ", rtcIntersect1/rtcOccluded1 single rays, high-quality BVH";
+               cpu_model_name() + ", rtcIntersect1/rtcOccluded1 single rays, high-quality BVH, FTZ/DAZ";
     }
     EmbreeMode mode() const override { return embree_->mode(); }
 

@@ -17,9 +17,24 @@ std::string describe_embree_mode(EmbreeMode mode) {
 #include <string>
 #include <thread>
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <xmmintrin.h>
+#endif
+
 #include "util/error.hpp"
 
 namespace clpath {
+
+#if defined(__x86_64__) || defined(__i386__)
+EmbreeThreadFloatMode::EmbreeThreadFloatMode() : saved_(_mm_getcsr()) {
+    constexpr unsigned kFlushToZero = 0x8000, kDenormalsAreZero = 0x0040;  // MXCSR bits 15 and 6
+    _mm_setcsr(saved_ | kFlushToZero | kDenormalsAreZero);
+}
+EmbreeThreadFloatMode::~EmbreeThreadFloatMode() { _mm_setcsr(saved_); }
+#else
+EmbreeThreadFloatMode::EmbreeThreadFloatMode() {}  // no MXCSR (Embree on ARM through SSE2NEON)
+EmbreeThreadFloatMode::~EmbreeThreadFloatMode() {}
+#endif
 
 namespace {
 
