@@ -1,6 +1,21 @@
 #include "bench/embree_scene.hpp"
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <xmmintrin.h>
+#endif
+
 namespace clpath {
+
+#if defined(__x86_64__) || defined(__i386__)
+EmbreeThreadFloatMode::EmbreeThreadFloatMode() : saved_(_mm_getcsr()) {
+    constexpr unsigned kFlushToZero = 0x8000, kDenormalsAreZero = 0x0040;  // MXCSR bits 15 and 6
+    _mm_setcsr(saved_ | kFlushToZero | kDenormalsAreZero);
+}
+EmbreeThreadFloatMode::~EmbreeThreadFloatMode() { _mm_setcsr(saved_); }
+#else
+EmbreeThreadFloatMode::EmbreeThreadFloatMode() {}  // no MXCSR (Embree on ARM through SSE2NEON)
+EmbreeThreadFloatMode::~EmbreeThreadFloatMode() {}
+#endif
 
 const char* embree_mode_name(EmbreeMode mode) { return mode == EmbreeMode::Robust ? "robust" : "default"; }
 
@@ -17,24 +32,10 @@ std::string describe_embree_mode(EmbreeMode mode) {
 #include <string>
 #include <thread>
 
-#if defined(__x86_64__) || defined(__i386__)
-#include <xmmintrin.h>
-#endif
-
 #include "util/error.hpp"
 
 namespace clpath {
 
-#if defined(__x86_64__) || defined(__i386__)
-EmbreeThreadFloatMode::EmbreeThreadFloatMode() : saved_(_mm_getcsr()) {
-    constexpr unsigned kFlushToZero = 0x8000, kDenormalsAreZero = 0x0040;  // MXCSR bits 15 and 6
-    _mm_setcsr(saved_ | kFlushToZero | kDenormalsAreZero);
-}
-EmbreeThreadFloatMode::~EmbreeThreadFloatMode() { _mm_setcsr(saved_); }
-#else
-EmbreeThreadFloatMode::EmbreeThreadFloatMode() {}  // no MXCSR (Embree on ARM through SSE2NEON)
-EmbreeThreadFloatMode::~EmbreeThreadFloatMode() {}
-#endif
 
 namespace {
 

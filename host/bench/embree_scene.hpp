@@ -20,6 +20,26 @@ const char* embree_mode_name(EmbreeMode mode);
 // "default mode (no RTC_SCENE_FLAG_ROBUST)", "robust mode (RTC_SCENE_FLAG_ROBUST)"
 std::string describe_embree_mode(EmbreeMode mode);
 
+// Embree asks every thread that calls rtcIntersect* or rtcOccluded* to run
+// with denormals flushed to zero and read as zero (FTZ and DAZ in MXCSR),
+// as without them "special handling of denormalized floating point numbers
+// can significantly reduce application and Embree performance" (Embree 3
+// API manual, "MXCSR control and status register"); its own tutorials, the
+// `pathtracer` example among them, set both. The baselines trace as Embree's
+// users are told to: each tracing thread holds one of these for the whole
+// of its work. The thread's mode is restored when it goes. (Declared in
+// every build: it needs nothing of Embree; a no-op where there is no MXCSR.)
+class EmbreeThreadFloatMode {
+public:
+    EmbreeThreadFloatMode();
+    ~EmbreeThreadFloatMode();
+    EmbreeThreadFloatMode(const EmbreeThreadFloatMode&) = delete;
+    EmbreeThreadFloatMode& operator=(const EmbreeThreadFloatMode&) = delete;
+
+private:
+    unsigned saved_ = 0;
+};
+
 }  // namespace clpath
 
 #if CLPATH_WITH_EMBREE
@@ -96,25 +116,6 @@ inline void init_embree_ray(RTCRay& r, glm::vec3 o, glm::vec3 d, float tmax, flo
 inline void init_embree_ray(RTCRay& r, glm::vec3 o, glm::vec3 d, float tmax) {
     init_embree_ray(r, o, d, tmax, glm::length(d));
 }
-
-// Embree asks every thread that calls rtcIntersect* or rtcOccluded* to run
-// with denormals flushed to zero and read as zero (FTZ and DAZ in MXCSR),
-// as without them "special handling of denormalized floating point numbers
-// can significantly reduce application and Embree performance" (Embree 3
-// API manual, "MXCSR control and status register"); its own tutorials, the
-// `pathtracer` example among them, set both. The baselines trace as Embree's
-// users are told to: each tracing thread holds one of these for the whole
-// of its work. The thread's mode is restored when it goes.
-class EmbreeThreadFloatMode {
-public:
-    EmbreeThreadFloatMode();
-    ~EmbreeThreadFloatMode();
-    EmbreeThreadFloatMode(const EmbreeThreadFloatMode&) = delete;
-    EmbreeThreadFloatMode& operator=(const EmbreeThreadFloatMode&) = delete;
-
-private:
-    unsigned saved_ = 0;
-};
 
 }  // namespace clpath
 #endif

@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "bench/embree_path_tracer.hpp"
+#include "bench/embree_scene.hpp"
 #include "bench/path_agreement.hpp"
 #include "render/renderer.hpp"
 #include "scene/load/scene_loader.hpp"
@@ -132,6 +133,28 @@ TEST(EmbreePathTracer, RefusesWhatItCannotRender) {
     if (embree_path_built_in()) {
         EXPECT_THROW(make_embree_path_tracer(thesis, 4), Error);
     }
+}
+
+// The baselines' tracing threads flush denormals (FTZ) and read them as zero
+// (DAZ), as Embree's manual asks, and give the thread its mode back after.
+// A subnormal input survives a multiplication by one outside the scope (the
+// control) and reads as zero inside it; a product that underflows comes out
+// subnormal outside and zero inside.
+TEST(EmbreeThreadFloatMode, FlushesDenormalsInsideItsScopeOnly) {
+#if defined(__x86_64__) || defined(__i386__)
+    volatile float subnormal = 1e-39f, one = 1.0f, small = 1e-30f, smaller = 1e-10f;
+    ASSERT_EQ(std::fpclassify(subnormal * one), FP_SUBNORMAL);
+    ASSERT_EQ(std::fpclassify(small * smaller), FP_SUBNORMAL);
+    {
+        const EmbreeThreadFloatMode ftz_daz;
+        EXPECT_EQ(subnormal * one, 0.0f);  // DAZ
+        EXPECT_EQ(small * smaller, 0.0f);  // FTZ
+    }
+    EXPECT_EQ(std::fpclassify(subnormal * one), FP_SUBNORMAL);
+    EXPECT_EQ(std::fpclassify(small * smaller), FP_SUBNORMAL);
+#else
+    GTEST_SKIP() << "no MXCSR on this CPU: the mode is a no-op here";
+#endif
 }
 
 TEST(PathAgreement, BonferroniBound) {
