@@ -89,14 +89,14 @@ one, two = count(f"{work}/pt-0-1.cg"), count(f"{work}/pt-1-1.cg")
 pt = dict(total=two["total"] - one["total"], trav=two["trav"] - one["trav"],
           rays={k: two["rays"][k] - one["rays"][k] for k in RTC})
 parts = sorted(glob.glob(f"{work}/bp.cg.*"), key=lambda p: int(p.rsplit(".", 1)[1]))
-renders = [count(p) for p in parts if "Trigger: --dump-after" in open(p).read(4000)]
-if len(renders) != 4:
-    sys.exit(f"instructions.sh: error: expected 4 renders of the built-in tracer in bench path, found {len(renders)}")
-warm_d, warm_r, default, robust = renders
+ends = [i for i, p in enumerate(parts) if "Trigger: --dump-after" in open(p).read(4000)]
+if len(ends) != 4:
+    sys.exit(f"instructions.sh: error: expected 4 renders of the built-in tracer in bench path, found {len(ends)}")
+default, robust = count(parts[ends[2]]), count(parts[ends[3]])  # after the two warm-up renders
 # The clpath render is the part before the timed default render: its kernels' own instructions.
-clp_part = count(parts[[i for i, p in enumerate(parts) if "Trigger: --dump-after" in open(p).read(4000)][2] - 1])
-walk = {f: n for f, n in clp_part["own"].items() if f in ("traverse_tree", "occlude_tree")}
-kernel = clp_part["own"].get("_pocl_kernel_render_paths_workgroup", 0)
+clp_own, cl_calls, _ = parse(parts[ends[2] - 1])
+walk = {f: n for f, n in clp_own.items() if f in ("traverse_tree", "occlude_tree")}
+kernel = clp_own.get("_pocl_kernel_render_paths_workgroup", 0)
 samples = int(size) ** 2 * int(spp)
 
 rows = []
@@ -126,7 +126,6 @@ ref = rows[0]
 L += ["", f"The built-in tracer in default mode over the example: **{rows[1][2] / ref[2]:.3f}** the instructions "
       f"per ray, {rows[1][3] / ref[3]:.3f} of the example's own code per ray, {rows[1][4] / ref[4]:.3f} of its "
       "traversal per ray.", ""]
-_, cl_calls, _ = parse(parts[[i for i, p in enumerate(parts) if "Trigger: --dump-after" in open(p).read(4000)][2] - 1])
 cl_rays = cl_calls["traverse_tree"] + cl_calls["occlude_tree"]
 if cl_rays:
     cl_walk = sum(walk.values())
