@@ -200,13 +200,17 @@ private:
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         rtcIntersect1(embree_->scene(), &ctx, &rh);
+        // Embree has just stored the hit field by field; read back one field
+        // at a time (volatile), or the compiler may pair two fields in one
+        // 8-byte load, which a 4-byte store cannot forward to (a stall per ray).
+        const volatile RTCRayHit& out = rh;
         Hit h;
-        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+        if (out.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
         h.hit = true;
-        h.t = rh.ray.tfar;
-        h.b1 = rh.hit.u;  // Embree's (u, v) weigh v1 and v2, as the kernels' (b1, b2)
-        h.b2 = rh.hit.v;
-        h.prim = rh.hit.primID;
+        h.t = out.ray.tfar;
+        h.b1 = out.hit.u;  // Embree's (u, v) weigh v1 and v2, as the kernels' (b1, b2)
+        h.b2 = out.hit.v;
+        h.prim = out.hit.primID;
         return h;
     }
 
