@@ -40,7 +40,7 @@ import csv, sys
 for r in csv.DictReader(open(sys.argv[1])):
     print(f"{sys.argv[2]},{sys.argv[3]},{sys.argv[4]},{r['batch']},{r['rays']},{r['launches']},{r['mean_ms']},{r['best_ms']},{r['mrays_per_s']}")
 PY
-  device=$(grep -m1 '"' "$WORK/p.txt" | sed 's/.*device "\(.*\)"/\1/')
+  device=$(grep -m1 'device "' "$WORK/p.txt" | sed 's/.*device "\(.*\)"/\1/' || true)
 done
 cp "$WORK/spread.csv" "$OUT/process-spread.csv"
 python3 - "$OUT" "$START" "$(date -u +%FT%TZ)" "$(git -C "$ROOT" rev-parse --short HEAD)" "$device" "$SCENE" "$LAUNCHES" \
