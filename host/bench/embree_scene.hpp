@@ -108,10 +108,10 @@ private:
 // straight away, and a load that spans several narrower stores still in
 // the store buffer cannot be forwarded from them (a store-forwarding stall:
 // Intel's optimization manual, "Store Forwarding"). Written field by field,
-// those two loads were the hottest of the built-in path tracer's Embree
-// time, which ran at 1.4-1.6x the time per ray that Embree's own
-// `pathtracer` example (whose Vec3fa rays are written whole) spends in the
-// same traversal code; 1.1x with the ray written whole.
+// those two loads were the hottest instructions of the built-in path
+// tracer's Embree time (perf), and took next to nothing in Embree's own
+// `pathtracer` example, whose Vec3fa rays are written whole
+// (benchmarks/results/pocl-xeon-2core/path-embree-pathtracer/README.md).
 inline void init_embree_ray(RTCRay& r, glm::vec3 o, glm::vec3 d, float tmax, float length) {
     const float mag = std::max(std::fabs(o.x), std::max(std::fabs(o.y), std::fabs(o.z)));
     const float tnear = length > 0 ? (1.0f + mag) * 1e-6f / length : 0.0f;
