@@ -1,12 +1,12 @@
 #include "bench/embree_scene.hpp"
 
-#if defined(__x86_64__) || defined(__i386__)
+#if defined(__SSE__)  // MXCSR
 #include <xmmintrin.h>
 #endif
 
 namespace clpath {
 
-#if defined(__x86_64__) || defined(__i386__)
+#if defined(__SSE__)
 EmbreeThreadFloatMode::EmbreeThreadFloatMode() : saved_(_mm_getcsr()) {
     constexpr unsigned kFlushToZero = 0x8000, kDenormalsAreZero = 0x0040;  // MXCSR bits 15 and 6
     _mm_setcsr(saved_ | kFlushToZero | kDenormalsAreZero);
@@ -35,7 +35,6 @@ std::string describe_embree_mode(EmbreeMode mode) {
 #include "util/error.hpp"
 
 namespace clpath {
-
 
 namespace {
 

@@ -52,7 +52,7 @@ private:
 
 #include <embree3/rtcore.h>
 #include <glm/glm.hpp>
-#if defined(__SSE__) || defined(_M_X64)
+#if defined(__SSE__)
 #include <xmmintrin.h>
 #endif
 
@@ -117,7 +117,7 @@ inline void init_embree_ray(RTCRay& r, glm::vec3 o, glm::vec3 d, float tmax, flo
     const float tnear = length > 0 ? (1.0f + mag) * 1e-6f / length : 0.0f;
     static_assert(offsetof(RTCRay, tnear) == 12 && offsetof(RTCRay, dir_x) == 16 && offsetof(RTCRay, time) == 28,
                   "RTCRay begins org, tnear, dir, time");
-#if defined(__SSE__) || defined(_M_X64)
+#if defined(__SSE__)
     _mm_store_ps(&r.org_x, _mm_setr_ps(o.x, o.y, o.z, tnear));  // RTCRay is 16-byte aligned (RTC_ALIGN(16))
     _mm_store_ps(&r.dir_x, _mm_setr_ps(d.x, d.y, d.z, 0.0f));
 #else

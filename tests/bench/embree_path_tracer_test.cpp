@@ -142,7 +142,7 @@ TEST(EmbreePathTracer, RefusesWhatItCannotRender) {
 // control) and reads as zero inside it; a product that underflows comes out
 // subnormal outside and zero inside.
 TEST(EmbreeThreadFloatMode, FlushesDenormalsInsideItsScopeOnly) {
-#if defined(__x86_64__) || defined(__i386__)
+#if defined(__SSE__)
     volatile float subnormal = 1e-39f, one = 1.0f, small = 1e-30f, smaller = 1e-10f;
     ASSERT_EQ(std::fpclassify(subnormal * one), FP_SUBNORMAL);
     ASSERT_EQ(std::fpclassify(small * smaller), FP_SUBNORMAL);
