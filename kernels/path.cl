@@ -198,6 +198,21 @@ CLP_GPU_INLINE void path_light_join(PathState* ps, float3 v, ShadowRay* sh) {
 }
 #endif
 
+/* Whether the ray a path scattering at a vertex of this depth would take
+ * can add light. That ray reaches the deepest vertex (CLP_MAX_DEPTH), where
+ * no light is sampled and the path ends, so all it can add is emission or the
+ * environment: in a program with neither (a scene lit by point, spot or
+ * directional lights alone) the path ends after the light sample instead,
+ * with the same image and one ray fewer (Embree's `pathtracer` never traces
+ * that ray). */
+static inline int path_next_ray_gathers(uint depth) {
+#if defined(CLP_HAS_EMISSION) || defined(CLP_HAS_ENV)
+    return 1;
+#else
+    return depth + 1u < CLP_MAX_DEPTH;
+#endif
+}
+
 /* The last phase: samples the BSDF at s (the path's next three numbers,
  * wo the direction back along its ray). Returns 0 when the path ends here. */
 CLP_GPU_INLINE int path_scatter(Rng* rng, const Surface* s, float3 wo, BsdfSample* bs) {
@@ -249,6 +264,7 @@ static inline int path_step(const SceneData* sc, PathState* ps, const Hit* h, Sh
         path_light_join(ps, v, sh);
     }
 #endif
+    if (!path_next_ray_gathers(ps->depth)) return 0;
     BsdfSample bs;
     if (!path_scatter(&ps->rng, &s, -ps->ray.d, &bs)) return 0;
     path_follow(ps, &s, &bs);

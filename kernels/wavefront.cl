@@ -306,6 +306,8 @@ kernel void wf_scatter(CLP_SCENE_PARAMS constant const FrameParams* fp, global f
     uint i = get_global_id(0);
     if (i >= counts[CLP_WF_SCATTER]) return;
     uint slot = queue[i];
+    /* (A dead read where the answer is always 1.) */
+    if (!path_next_ray_gathers(as_uint(paths[CLP_WF_ROW_L * capacity + slot].w) & 0x7fffffffu)) return;
     float4 d = paths[CLP_WF_ROW_D * capacity + slot];
     Rng rng;
     rng.state = as_uint(d.w);

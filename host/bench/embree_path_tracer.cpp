@@ -17,6 +17,7 @@
 
 #include "bench/cpu_estimator.hpp"
 #include "bench/embree_scene.hpp"
+#include "render/kernel_features.hpp"
 #endif
 
 namespace clpath {
@@ -97,6 +98,7 @@ public:
         // triangles' light indices are read (for MIS at emitters).
         light_of_.assign(scene.triangle_count(), CLP_NO_LIGHT);
         for (const auto& t : prepared_->accel.triangles) light_of_[t.prim] = t.light;
+        emission_ = scene_features(scene).emission;  // as the kernels are compiled (CLP_HAS_EMISSION)
         camera_ = camera_data(scene.camera);
         width_ = scene.camera.width;
         height_ = scene.camera.height;
@@ -291,6 +293,9 @@ private:
             if (depth >= max_depth_ || !scatters) break;
             const vec3 wo = -ray.d;
             if (!prepared_->lights.empty()) L += beta * sample_direct(s, wo, rng, rays);
+            // The next ray would reach the deepest vertex, where only emission adds light
+            // (kernels/path.cl path_next_ray_gathers): without emitters it is not traced.
+            if (!emission_ && depth + 1 >= max_depth_) break;
             const float u1 = cpu::rng_next(&rng), u2 = cpu::rng_next(&rng);
             cpu::rng_next(&rng);  // the kernels draw a third number for every BSDF (diffuse ignores it)
             float pdf;
@@ -314,6 +319,7 @@ private:
     };
 
     std::uint32_t max_depth_;
+    bool emission_ = false;  // some surface emits (environments are refused)
     std::shared_ptr<const PreparedScene> prepared_;
     std::vector<std::uint32_t> light_of_;  // per scene triangle: its light, or CLP_NO_LIGHT
     std::vector<TriangleRecord> tris_;     // per scene triangle
