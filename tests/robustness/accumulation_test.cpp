@@ -95,16 +95,25 @@ RenderSettings deep_paths() {
 // The renderer sizes launches by max_rays_per_sample; the integrators at
 // their worst must stay within it. Measured: a path of max_depth bounces,
 // without roulette, traces its camera ray, one ray per bounce and one shadow
-// ray at every vertex but the last (2 max_depth + 1); ambient occlusion its
-// camera ray and one occlusion ray (2, the bound at max_depth 0).
+// ray at every vertex but the last (2 max_depth + 1) in a program that can
+// see emission (every feature compiled in, the worst case); the box's own
+// program, lit by a point light alone, does not trace the ray to the last
+// vertex (kernels/path.cl path_next_ray_gathers: 2 max_depth). Ambient
+// occlusion traces its camera ray and one occlusion ray (2, the bound at
+// max_depth 0).
 TEST(Accumulation, WorstCaseRaysPerSampleWithinTheBound) {
     const Scene s = lit_closed_box();
     const std::uint64_t samples = 16ull * 8 * 4;
     RenderSettings st = deep_paths();
     RenderStats stats;
     test::render(s, st, 4, &stats);
+    EXPECT_EQ(stats.rays, samples * 2 * st.max_depth);
+    EXPECT_LE(stats.rays, samples * max_rays_per_sample(st));
+    st.all_features = true;
+    test::render(s, st, 4, &stats);
     EXPECT_EQ(stats.rays, samples * (2 * st.max_depth + 1));
     EXPECT_LE(stats.rays, samples * max_rays_per_sample(st));
+    st.all_features = false;
     st.integrator = CLP_INTEGRATOR_AO;
     st.max_depth = 0;
     test::render(s, st, 4, &stats);
