@@ -306,7 +306,9 @@ kernel void wf_scatter(CLP_SCENE_PARAMS constant const FrameParams* fp, global f
     uint i = get_global_id(0);
     if (i >= counts[CLP_WF_SCATTER]) return;
     uint slot = queue[i];
-    /* (A dead read where the answer is always 1.) */
+    /* A path whose next ray could add no light ends after its light sample,
+     * as in path_step; where path_next_ray_gathers is always 1 the read is
+     * dead and the compiler drops it. */
     if (!path_next_ray_gathers(as_uint(paths[CLP_WF_ROW_L * capacity + slot].w) & 0x7fffffffu)) return;
     float4 d = paths[CLP_WF_ROW_D * capacity + slot];
     Rng rng;

@@ -29,8 +29,9 @@ struct LaunchStats {
 // Most rays one sample can trace, for any integrator: a path traces its
 // camera ray and one ray per bounce (max_depth + 1; one fewer in a program
 // with no emission or environment, kernels/path.cl path_next_ray_gathers)
-// and one shadow ray per bounce (max_depth); ambient occlusion 2. Launches are sized so that the
-// kernels' 32-bit ray counter cannot overflow (host totals are 64-bit).
+// and one shadow ray per bounce (max_depth); ambient occlusion 2. Launches
+// are sized so that the kernels' 32-bit ray counter cannot overflow (host
+// totals are 64-bit).
 constexpr std::uint64_t max_rays_per_sample(const RenderSettings& s) { return 2ull * s.max_depth + 2; }
 
 class IntegratorProgram {
