@@ -9,8 +9,11 @@
 #   benchmarks/path_embree/pathtracer.sh [RESULT_DIR_NAME] [BUILD_DIR]
 # writes benchmarks/results/RESULT_DIR_NAME/path-embree-pathtracer/{README.md,runs.csv,log.txt}
 # Environment: ROUNDS (3), SPP (16), DEPTH (4), SIZE (512), SCENE (scenes/cornell-point.json: point
-#   lights and diffuse surfaces only, what `clpath export --format embree` writes), DEVICE (clpath's
-#   OpenCL device), PATHTRACER (default: pathtracer on PATH), NOTE (a line on the machine's state).
+#   lights and diffuse surfaces only, what `clpath export --format embree` writes;
+#   benchmarks/path_embree/scenes/cornell-point-empty.json is the same box without its blocks, where
+#   the two programs trace the same rays), OUT_NAME (the results folder's name, default
+#   path-embree-pathtracer), DEVICE (clpath's OpenCL device), PATHTRACER (default: pathtracer on PATH),
+#   NOTE (a line on the machine's state).
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 DEV_DIR=${1:-pocl-epyc-2core}
@@ -22,7 +25,7 @@ DEPTH=${DEPTH:-4}
 SIZE=${SIZE:-512}
 SCENE=${SCENE:-$ROOT/scenes/cornell-point.json}
 PATHTRACER=${PATHTRACER:-$(command -v pathtracer || true)}
-OUT=$ROOT/benchmarks/results/$DEV_DIR/path-embree-pathtracer
+OUT=$ROOT/benchmarks/results/$DEV_DIR/${OUT_NAME:-path-embree-pathtracer}
 [ -x "$CLPATH" ] || { echo "pathtracer.sh: error: $CLPATH: no clpath build there" >&2; exit 1; }
 [ -n "$PATHTRACER" ] && [ -x "$PATHTRACER" ] ||
   { echo "pathtracer.sh: error: Embree's pathtracer not found (Debian: apt-get install embree-tools)" >&2; exit 1; }
