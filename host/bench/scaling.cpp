@@ -63,7 +63,12 @@ void measure(Context& ctx, const Scene& scene, Accel accel, const ScalingOptions
     RenderSettings settings = settings_from_scene(small.render);
     settings.accel = accel;
     Renderer renderer(ctx, small, settings);
-    renderer.add_samples(1);  // warm-up: a device may finish compiling at the first launch
+    // Warm-up with the timed pass's own sample count: a device may finish
+    // compiling at the first launch of each launch shape, and one sample per
+    // pixel launches other shapes than several (IntegratorProgram::add_samples
+    // sizes its launches by the speed it measured): warmed with one, the first
+    // run's smallest scene timed PoCL's compile (CV 65 % between runs, EPYC).
+    renderer.add_samples(o.path_spp);
     renderer.reset();
     renderer.add_samples(o.path_spp);
     const RenderStats& st = renderer.stats();
