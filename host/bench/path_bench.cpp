@@ -19,13 +19,6 @@ double PathRound::rays_ratio(EmbreeMode m) const {
     return e.mrays_per_s > 0 ? clpath.mrays_per_s / e.mrays_per_s : 0;
 }
 
-double median_of(std::vector<double> v) {
-    if (v.empty()) return 0;
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 namespace {
 
 PathTiming timing(double seconds, std::uint64_t rays, std::uint64_t nonfinite, double samples) {

@@ -13,6 +13,7 @@
 #include "bench/path_agreement.hpp"
 #include "cl/context.hpp"
 #include "scene/scene.hpp"
+#include "util/median.hpp"
 
 namespace clpath {
 
@@ -51,9 +52,6 @@ struct PathBenchResult {
     PathAgreement agreement[2];  // clpath's last image against each Embree tracer's, by EmbreeMode
     bool agrees() const { return agreement[0].agrees() && agreement[1].agrees(); }
 };
-
-// Median of the values (the mean of the middle two for an even count); 0 for none.
-double median_of(std::vector<double> v);
 
 // Throws clpath::UsageError naming what the Embree tracer cannot render as
 // clpath does (other materials, textures, an environment...), clpath::Error

@@ -13,6 +13,7 @@
 #include "cl/program.hpp"
 #include "render/kernel_programs.hpp"
 #include "util/error.hpp"
+#include "util/median.hpp"
 
 namespace clpath {
 namespace {
@@ -168,6 +169,7 @@ void finish_timing(BatchResult& b) {
     double sum = 0;
     for (double ms : b.launch_ms) sum += ms;
     b.mean_ms = sum / double(b.launch_ms.size());
+    b.median_ms = median_of(b.launch_ms);
     b.mrays_per_s = b.mean_ms > 0 ? double(b.rays) / (b.mean_ms * 1e-3) * 1e-6 : 0;
 }
 

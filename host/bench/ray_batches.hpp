@@ -101,6 +101,7 @@ struct BatchResult {
     std::size_t rays = 0, hits = 0;
     std::vector<double> launch_ms;  // each timed launch's kernel time
     double best_ms = 0, mean_ms = 0;
+    double median_ms = 0;    // the middle launch (the mean of the middle two for an even count)
     double mrays_per_s = 0;  // rays / mean kernel time
     BatchAgreement agreement;
     EmbreeBatch embree[2];  // by EmbreeMode: default, robust

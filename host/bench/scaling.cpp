@@ -5,15 +5,20 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "bench/ray_batches.hpp"
 #include "bench/report_files.hpp"
 #include "render/renderer.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "util/error.hpp"
+#include "util/median.hpp"
 
 namespace clpath {
 namespace {
+
+// Timed passes of the path column, after its warm-up; the median is reported.
+constexpr int kPathPasses = 3;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -50,9 +55,18 @@ void measure(Context& ctx, const Scene& scene, Accel accel, const ScalingOptions
     row.sah_cost = r.structure.sah_cost;
     row.nodes = r.structure.node_count;
     row.bytes_per_triangle = double(r.structure_bytes) / double(row.triangles);
-    row.primary_mrays = r.batches[0].mrays_per_s;
-    row.shadow_mrays = r.batches[1].mrays_per_s;
-    row.diffuse_mrays = r.batches[2].mrays_per_s;
+    // Each batch's rate from its median launch, and the path column's from
+    // the median of three passes: a launch slowed by another process taking
+    // a core for a moment moved a mean of three launches by up to a fifth
+    // (scaling:300 diffuse 15.98 against 19.07-19.73 Mrays/s, EPYC, idle),
+    // while fresh processes' best launches agreed within 1.1 %
+    // (benchmarks/scaling/process_spread.sh).
+    auto median_rate = [](const BatchResult& b) {
+        return b.median_ms > 0 ? double(b.rays) / (b.median_ms * 1e-3) * 1e-6 : 0;
+    };
+    row.primary_mrays = median_rate(r.batches[0]);
+    row.shadow_mrays = median_rate(r.batches[1]);
+    row.diffuse_mrays = median_rate(r.batches[2]);
     for (const auto& b : r.batches) {
         row.checked += b.agreement.checked;
         row.mismatched += b.agreement.mismatched;
@@ -69,14 +83,19 @@ void measure(Context& ctx, const Scene& scene, Accel accel, const ScalingOptions
     // sizes its launches by the speed it measured): warmed with one, the first
     // run's smallest scene timed PoCL's compile (CV 65 % between runs, EPYC).
     renderer.add_samples(o.path_spp);
-    renderer.reset();
-    renderer.add_samples(o.path_spp);
-    const RenderStats& st = renderer.stats();
-    const double samples = double(st.samples_per_pixel) * o.path_width * o.path_height;
-    row.msamples_per_s = st.render_seconds > 0 ? samples / st.render_seconds * 1e-6 : 0;
-    // Every ray the megakernel traced (camera, bounce and shadow), so its rate
-    // sits beside the diffuse batch's: the gap between them is the cost of shading.
-    row.path_mrays_per_s = st.render_seconds > 0 ? double(st.rays) / st.render_seconds * 1e-6 : 0;
+    std::vector<double> samples_per_s, rays_per_s;
+    for (int pass = 0; pass < kPathPasses; ++pass) {
+        renderer.reset();
+        renderer.add_samples(o.path_spp);
+        const RenderStats& st = renderer.stats();
+        const double samples = double(st.samples_per_pixel) * o.path_width * o.path_height;
+        samples_per_s.push_back(st.render_seconds > 0 ? samples / st.render_seconds * 1e-6 : 0);
+        // Every ray the megakernel traced (camera, bounce and shadow), so its rate
+        // sits beside the diffuse batch's: the gap between them is the cost of shading.
+        rays_per_s.push_back(st.render_seconds > 0 ? double(st.rays) / st.render_seconds * 1e-6 : 0);
+    }
+    row.msamples_per_s = median_of(samples_per_s);
+    row.path_mrays_per_s = median_of(rays_per_s);
 }
 
 }  // namespace

@@ -4,7 +4,8 @@
 // whose size on screen stays fixed) from min to max triangles in 1-3-10
 // steps. Per size and structure: generation time, build time and Mtris/s,
 // SAH cost, node count, device bytes per triangle, Mrays/s of the three ray
-// batches (bench/ray_batches.hpp, at a small resolution) and path samples/s.
+// batches (bench/ray_batches.hpp; each from its median launch) and path
+// samples/s (the median of three passes after a warm-up).
 // The flat structure runs until its predicted time for the next size passes
 // the time cap; sizes that would not fit in memory are skipped and say why.
 #include <cstddef>
