@@ -1,6 +1,5 @@
 #include "bench/path_bench.hpp"
 
-#include <algorithm>
 #include <cstdio>
 #include <iterator>
 #include <memory>

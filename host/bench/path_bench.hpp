@@ -13,7 +13,6 @@
 #include "bench/path_agreement.hpp"
 #include "cl/context.hpp"
 #include "scene/scene.hpp"
-#include "util/median.hpp"
 
 namespace clpath {
 

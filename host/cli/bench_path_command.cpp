@@ -15,6 +15,7 @@
 #include "cli/option_checks.hpp"
 #include "scene/load/scene_loader.hpp"
 #include "util/error.hpp"
+#include "util/median.hpp"
 
 namespace clpath {
 namespace {
