@@ -22,7 +22,8 @@ def load(path):
 
 
 def series(rows, accel, column):
-    pts = [(int(r["triangles"]), float(r[column])) for r in rows if r["accel"] == accel and float(r[column]) > 0]
+    pts = [(int(r["triangles"]), float(r[column])) for r in rows
+           if r["accel"] == accel and column in r and float(r[column] or 0) > 0]
     return [p[0] for p in pts], [p[1] for p in pts]
 
 
@@ -40,6 +41,11 @@ def main():
             x, y = series(rows, accel, f"{batch}_mrays_per_s")
             if x:
                 ax.plot(x, y, ls, marker="o", color=c, label=f"{accel} {batch}")
+    # Embree's default mode on the BVH rows' rays (CSVs from before it had a column have none).
+    for batch, c in colours.items():
+        x, y = series(rows, "bvh", f"embree_{batch}_mrays_per_s")
+        if x:
+            ax.plot(x, y, ":", marker="x", color=c, label=f"Embree {batch}")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("triangles")

@@ -99,6 +99,8 @@ fi
   echo "  render at 4 samples per pixel by the renderer \`clpath render\` runs (path integrator; after a warm-up render,"
   echo "  the median of three); CPU check of 4096"
   echo "  evenly spaced rays per batch. Each entry: the median of the runs, with their coefficient of variation."
+  echo "  Embree 3 traces the BVH rows' batches in the same run on the same cores, in its default mode (as its users run"
+  echo "  it), its rate from its median pass: its own fall with the scene's size, read beside clpath's."
   echo "  Every run's table: scaling-run*.csv; output: log.txt."
   echo "- the flat structure (one box per object, the thesis renderer's) stops when its next size is predicted to take"
   echo "  longer than $CAP s; sizes above the memory budget (80 % of MemAvailable) are skipped; both say so in the table."

@@ -17,6 +17,9 @@ import sys
 RATES = [("primary_mrays_per_s", "primary"), ("shadow_mrays_per_s", "shadow"),
          ("diffuse_mrays_per_s", "diffuse"), ("path_msamples_per_s", "path samples"),
          ("path_mrays_per_s", "path rays")]
+# Embree's default mode on the BVH rows' batches (0 where it did not run: flat rows, a build without Embree).
+EMBREE = [("embree_primary_mrays_per_s", "primary"), ("embree_shadow_mrays_per_s", "shadow"),
+          ("embree_diffuse_mrays_per_s", "diffuse")]
 CV_LIMIT = 5.0  # percent: a batch stable enough to compare across sizes
 
 
@@ -48,8 +51,8 @@ def main():
                 values = [float(r[col]) for r in rows]
             except ValueError:
                 continue
-            if col in ("triangles", "requested", "nodes", "checked_rays", "mismatched"):
-                med[col] = rows[0][col] if col != "mismatched" else str(int(sum(values)))
+            if col in ("triangles", "requested", "nodes", "checked_rays", "mismatched", "embree_mismatched"):
+                med[col] = rows[0][col] if not col.endswith("mismatched") else str(int(sum(values)))
                 continue
             med[col] = "%.6g" % statistics.median(values)
             stats[col] = (statistics.median(values), cv(values))
@@ -60,13 +63,15 @@ def main():
         w.writeheader()
         w.writerows(medians)
 
+    embree_cols = [e for e in EMBREE if e[0] in header]
     lines = ["| triangles | structure | build ms (CV) | " +
              " | ".join("%s %s (CV)" % (name, "Msamples/s" if "samples" in name else "Mrays/s") for _, name in RATES) +
-             " |", "|---:|---|---:|" + "---:|" * len(RATES)]
+             "".join(" | Embree %s (CV)" % name for _, name in embree_cols) +
+             " |", "|---:|---|---:|" + "---:|" * (len(RATES) + len(embree_cols))]
     unstable = []
     for (tris, accel), stats, why in table:
         if stats is None:
-            lines.append("| %s | %s | %s |%s" % (tris, accel, why, " |" * len(RATES)))
+            lines.append("| %s | %s | %s |%s" % (tris, accel, why, " |" * (len(RATES) + len(embree_cols))))
             continue
         cells = []
         for col, name in [("build_ms", "build")] + RATES:
@@ -75,6 +80,9 @@ def main():
             if flag:
                 unstable.append("%s %s %s (%.1f %%)" % (tris, accel, name, c))
             cells.append(("**%.4g (%.1f %%)**" if flag else "%.4g (%.1f %%)") % (m, c))
+        for col, _ in embree_cols:  # blank where Embree did not run; its variation is shown, not flagged
+            m, c = stats.get(col, (0.0, 0.0))
+            cells.append("%.4g (%.1f %%)" % (m, c) if m > 0 else "")
         lines.append("| %s | %s | %s |" % (tris, accel, " | ".join(cells)))
     lines.append("")
     lines.append("Medians of %d runs; CV: the runs' standard deviation over their mean (bold: %g %% or more)." %
@@ -92,6 +100,20 @@ def main():
         for col, name in RATES:
             lowest = min(s[col][0] for n, s in bvh if n >= lo[0])
             lines.append("- %s: %.2fx (%.4g to %.4g)" % (name, lo[1][col][0] / lowest, lo[1][col][0], lowest))
+        ran = [col for col, _ in EMBREE if all(col in s and s[col][0] > 0 for n, s in bvh if n >= lo[0])]
+        if ran:
+            lines.append("")
+            lines.append("Embree (default mode, every core) on the same rays, the same way: its fall, and clpath's rate "
+                         "over Embree's at %d and at %d triangles:" % (lo[0], hi[0]))
+            lines.append("")
+            for col, name in EMBREE:
+                if col not in ran:
+                    continue
+                lowest = min(s[col][0] for n, s in bvh if n >= lo[0])
+                own = col[len("embree_"):]
+                lines.append("- %s: %.2fx (%.4g to %.4g); clpath/Embree %.3f at %d, %.3f at %d" %
+                             (name, lo[1][col][0] / lowest, lo[1][col][0], lowest,
+                              lo[1][own][0] / lo[1][col][0], lo[0], hi[1][own][0] / hi[1][col][0], hi[0]))
     with open(out_md, "w") as f:
         f.write("\n".join(lines) + "\n")
 

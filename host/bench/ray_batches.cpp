@@ -127,6 +127,7 @@ void take_timing(EmbreeBatch& e, const EmbreeTiming& t) {
     e.ran = true;
     e.best_ms = t.best_ms;
     e.mean_ms = t.mean_ms;
+    e.median_ms = median_of(t.pass_ms);
     e.mrays_per_s = t.mrays_per_s;
 }
 
@@ -303,6 +304,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     std::vector<std::uint32_t> leaf_of;
     if (o.embree) {
         for (EmbreeMode mode : kEmbreeModes) {
+            if (mode == EmbreeMode::Robust && !o.embree_robust) continue;
             auto e = make_embree_baseline(scene.vertices, mode);
             if (!e) break;
             res.embree[int(mode)] = e->describe();

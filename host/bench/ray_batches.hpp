@@ -38,8 +38,10 @@ struct RayBenchOptions {
     std::uint32_t seed = 0;                    // diffuse directions
     BvhBuildOptions bvh;
     // Trace every batch with Embree too, in its default mode and robust
-    // (bench/embree_scene.hpp), when built with it (bench/embree_baseline.hpp).
+    // (bench/embree_scene.hpp), when built with it (bench/embree_baseline.hpp);
+    // in its default mode only without embree_robust.
     bool embree = true;
+    bool embree_robust = true;
     // A variant of the kernels to time against the built-in ones (kernel
     // files replacing built-in ones, build options added). Each batch's launches then
     // alternate between the two programs, which goes first alternating too,
@@ -92,7 +94,8 @@ struct EmbreeBatch {
     EmbreeMode mode = EmbreeMode::Default;
     std::size_t hits = 0;
     double best_ms = 0, mean_ms = 0;
-    double mrays_per_s = 0;
+    double median_ms = 0;    // the middle pass (the mean of the middle two for an even count)
+    double mrays_per_s = 0;  // rays / mean time
     BatchAgreement agreement;
 };
 

@@ -5,7 +5,9 @@
 // steps. Per size and structure: generation time, build time and Mtris/s,
 // SAH cost, node count, device bytes per triangle, Mrays/s of the three ray
 // batches (bench/ray_batches.hpp; each from its median launch) and path
-// samples/s (the median of three passes after a warm-up).
+// samples/s (the median of three passes after a warm-up); beside the BVH's
+// batches, Embree's default mode on the same rays (its median pass), so that
+// each batch's fall with the scene's size can be read against a CPU tracer's.
 // The flat structure runs until its predicted time for the next size passes
 // the time cap; sizes that would not fit in memory are skipped and say why.
 #include <cstddef>
@@ -32,6 +34,8 @@ struct ScalingOptions {
     // The path column: the renderer `clpath render` runs, at this size.
     int path_width = 320, path_height = 240;
     std::uint32_t path_spp = 4;
+    // Embree (default mode, every core) traces the BVH rows' batches too, when built in.
+    bool embree = true;
     // Host memory the benchmark may use; a size whose estimate exceeds it is
     // skipped. 0: 80 % of MemAvailable (/proc/meminfo).
     double memory_budget_bytes = 0;
@@ -45,17 +49,21 @@ struct ScalingRow {
     std::size_t nodes = 0;
     double bytes_per_triangle = 0;  // device nodes + triangle records
     double primary_mrays = 0, shadow_mrays = 0, diffuse_mrays = 0;
+    // Embree's default mode on the same batches (median pass); 0 when it did not run.
+    double embree_primary_mrays = 0, embree_shadow_mrays = 0, embree_diffuse_mrays = 0;
     double msamples_per_s = 0;       // path integrator, default settings
     double path_mrays_per_s = 0;     // its rays per second, every kind
     std::size_t checked = 0, mismatched = 0;  // CPU check over the three batches
+    std::size_t embree_mismatched = 0;         // Embree's answers against the same check
     double seconds = 0;              // wall time this row took
 };
 
 // The sizes: min, then 1-3-10 steps per decade, up to max.
 std::vector<std::size_t> scaling_sizes(std::size_t min, std::size_t max);
 
-// Host bytes a size is estimated to need at its peak (scene, builder, device copies on a CPU device).
-double scaling_memory_estimate(std::size_t triangles);
+// Host bytes a size is estimated to need at its peak (scene, builder, device
+// copies on a CPU device, and Embree's scene when it runs).
+double scaling_memory_estimate(std::size_t triangles, bool embree);
 
 std::vector<ScalingRow> run_scaling(Context& ctx, const ScalingOptions& options,
                                     const std::function<void(const std::string&)>& log = {});

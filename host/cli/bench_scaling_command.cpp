@@ -23,7 +23,7 @@ struct ScalingCliOptions {
     std::string accel = "both", csv, md, device;
     int width = 480, height = 320, launches = 3;
     int path_width = 320, path_height = 240, path_spp = 4;
-    bool quick = false;
+    bool quick = false, no_embree = false;
 };
 
 std::size_t whole_count(double v, const char* what) {
@@ -46,6 +46,7 @@ int run_scaling_cli(const ScalingCliOptions& c) {
     o.path_width = c.path_width;
     o.path_height = c.path_height;
     o.path_spp = std::uint32_t(c.path_spp);
+    o.embree = !c.no_embree;
     if (c.quick) {
         o.min = 100;
         o.max = std::min<std::size_t>(o.max, 1000);
@@ -119,6 +120,8 @@ Command add_bench_scaling_command(CLI::App& bench) {
     cmd->add_option("--device,-d", o->device, "OpenCL device: index or name substring (see 'clpath devices')")
         ->check(non_empty(kDeviceChoices));
     cmd->add_flag("--quick", o->quick, "100 and 1000 triangles at a tiny resolution (for CI)");
+    cmd->add_flag("--no-embree", o->no_embree,
+                  "Skip the Embree columns (by default Embree traces the BVH rows' batches too, in its default mode)");
     return [o] { return run_scaling_cli(*o); };
 }
 

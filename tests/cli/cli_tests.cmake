@@ -107,7 +107,7 @@ function(clpath_bench_quick_test name csv header zero_column min_rows)
     set_tests_properties(cli.bench.${name} PROPERTIES ENVIRONMENT "${CLPATH_TEST_ENV}" TIMEOUT 300)
 endfunction()
 set(RAYS_HEADER "^device,scene,triangles,accel,batch,width,height,workgroup,rays,hits,launches,mean_ms,best_ms,mrays_per_s,checked,identical_percent,ties,near_origin,mismatched,max_dt,embree_default_mean_ms,embree_default_mrays_per_s,clpath_over_embree_default,embree_default_mismatched,embree_robust_mean_ms,embree_robust_mrays_per_s,clpath_over_embree_robust,embree_robust_mismatched$")
-set(SCALING_HEADER "^device,requested,triangles,accel,generate_ms,build_ms,build_mtris_per_s,sah_cost,nodes,bytes_per_triangle,primary_mrays_per_s,shadow_mrays_per_s,diffuse_mrays_per_s,path_msamples_per_s,path_mrays_per_s,checked_rays,mismatched,seconds,skipped$")
+set(SCALING_HEADER "^device,requested,triangles,accel,generate_ms,build_ms,build_mtris_per_s,sah_cost,nodes,bytes_per_triangle,primary_mrays_per_s,shadow_mrays_per_s,diffuse_mrays_per_s,path_msamples_per_s,path_mrays_per_s,checked_rays,mismatched,seconds,embree_primary_mrays_per_s,embree_shadow_mrays_per_s,embree_diffuse_mrays_per_s,embree_mismatched,skipped$")
 # Every ray of the quick batches is checked on the CPU: no mismatch is allowed.
 clpath_bench_quick_test(rays_quick_bvh ${CLI_OUT}/rays-bvh.csv "${RAYS_HEADER}" mismatched 3 bench rays cornell --quick)
 clpath_bench_quick_test(rays_quick_flat ${CLI_OUT}/rays-flat.csv "${RAYS_HEADER}" mismatched 3
