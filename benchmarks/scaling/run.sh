@@ -95,7 +95,7 @@ fi
   echo "- command: \`clpath bench scaling ${DEV[*]} --max $MAX --time-cap $CAP\`, run $ROUNDS times (benchmarks/scaling/run.sh), $scaling_s s in all;"
   echo "  load average before and after: $scaling_load_before / $scaling_load_after.${NOTE:+ $NOTE}"
   echo "- scenes: \`scaling:N\` (the thesis room around one bumpy UV sphere); ray batches at 480x320 pixels x 16 samples"
-  echo "  (2.46 million rays; one warm-up and 3 timed launches, Mrays/s from the median launch), the path column a 320x240"
+  echo "  (2.46 million rays; one warm-up and 5 timed launches, Mrays/s from the median launch), the path column a 320x240"
   echo "  render at 4 samples per pixel by the renderer \`clpath render\` runs (path integrator; after a warm-up render,"
   echo "  the median of three); CPU check of 4096"
   echo "  evenly spaced rays per batch. Each entry: the median of the runs, with their coefficient of variation."

@@ -29,7 +29,11 @@ struct ScalingOptions {
     // agree within a few percent (96x64 batches, 98,304 rays, ranged 2.3-7.7
     // Mrays/s between runs at 10^6 triangles).
     int ray_width = 480, ray_height = 320;
-    int launches = 3;
+    // Five launches, the rate from the median: on a quiet 2-core VM two of
+    // three launches of a 50-100 ms batch were now and then slowed together
+    // (scaling:100 diffuse 19.3 against 23.8-24.0 Mrays/s in the other two
+    // runs, EPYC), which a median of three cannot outvote.
+    int launches = 5;
     std::size_t check = 4096;         // rays per batch checked on the CPU
     // The path column: the renderer `clpath render` runs, at this size.
     int path_width = 320, path_height = 240;

@@ -21,7 +21,7 @@ struct ScalingCliOptions {
     double min = 100, max = 10'000'000;
     double time_cap = 60;
     std::string accel = "both", csv, md, device;
-    int width = 480, height = 320, launches = 3;
+    int width = 480, height = 320, launches = 5;
     int path_width = 320, path_height = 240, path_spp = 4;
     bool quick = false, no_embree = false;
 };
