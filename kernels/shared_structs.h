@@ -201,6 +201,37 @@ typedef struct {
  * (traverse_bvh4.cl, occlude_tree): so no more 4-wide nodes than this (host/bvh/wide.cpp). */
 #define CLP_BVH4_MAX_NODES (1 << 29)
 
+/* The BVH as CPUs walk it: eight children per node, the same rows widened
+ * to eight lanes, so one float8 slab test (one AVX instruction per step)
+ * handles all eight boxes; a tree about two thirds as deep as the 4-wide
+ * one, for twice the bytes a node. On PoCL it traced 1.05-1.21x the rays
+ * per second of Bvh4Node128 (cornell, bunny, room:1003542, scaling:1000;
+ * benchmarks/results/pocl-epyc-2core/). GPUs keep Bvh4Node128: their
+ * kernels are held to register and stack budgets measured on the 4-wide
+ * walk (benchmarks/results/gpu-compile/), and instanced scenes too (their
+ * two-level walk is 4-wide). Same conventions as Bvh4Node128: child[i] > 0
+ * an interior node, < 0 a leaf of count[i] triangles from ~child[i],
+ * child and count 0 an empty slot. */
+typedef struct {
+    float lo_x[8];
+    float hi_x[8];
+    float lo_y[8];
+    float hi_y[8];
+    float lo_z[8];
+    float hi_z[8];
+    int child[8];
+    uint count[8];
+} Bvh8Node256;
+
+/* The widening falls back to spanning two binary levels per wide level as
+ * for four children (host/bvh/wide.cpp), so the same depth bound holds; a
+ * traversal keeps at most seven siblings per level, plus the one it is
+ * about to pop. */
+#define CLP_BVH8_MAX_DEPTH CLP_BVH4_MAX_DEPTH
+#define CLP_BVH8_STACK (7 * CLP_BVH8_MAX_DEPTH + 1)
+/* Shadow rays push a leaf as ~(node * 8 + slot) (traverse_bvh8.cl). */
+#define CLP_BVH8_MAX_NODES (1 << 28)
+
 /* Instancing (a two-level BVH, host/bvh/instances.hpp), compiled in only
  * for a scene that places a mesh by instances (-DCLP_HAS_INSTANCES): the node
  * buffer then holds the top-level 4-wide BVH over the instances' world boxes
@@ -452,6 +483,10 @@ typedef struct {
 CLP_STATIC_ASSERT(sizeof(BvhNode64) == 64, bvh_node_is_64_bytes);
 CLP_STATIC_ASSERT(sizeof(TriVerts) == 48, tri_verts_is_48_bytes);
 CLP_STATIC_ASSERT(sizeof(Bvh4Node128) == 128, bvh4_node_is_128_bytes);
+CLP_STATIC_ASSERT(sizeof(Bvh8Node256) == 256, bvh8_node_is_256_bytes);
+CLP_STATIC_ASSERT(__builtin_offsetof(Bvh8Node256, hi_z) == 160 && __builtin_offsetof(Bvh8Node256, child) == 192 &&
+                      __builtin_offsetof(Bvh8Node256, count) == 224,
+                  bvh8_node_rows);
 CLP_STATIC_ASSERT(__builtin_offsetof(Bvh4Node128, hi_z) == 80 && __builtin_offsetof(Bvh4Node128, child) == 96 &&
                       __builtin_offsetof(Bvh4Node128, count) == 112,
                   bvh4_node_rows);

@@ -3,7 +3,11 @@
  * layout, each in a file of its own that defines AccelNode (the record the
  * kernels receive), accel_closest_hit() and accel_any_hit() (traverse_bvh's
  * contract, without any_hit):
- *   traverse_bvh4.cl  the 4-wide BVH (Bvh4Node128), the default;
+ *   traverse_bvh4.cl  the 4-wide BVH (Bvh4Node128), what GPU programs and
+ *                     instanced scenes walk;
+ *   traverse_bvh8.cl  with -DCLP_NODES_BVH8, the 8-wide BVH (Bvh8Node256),
+ *                     what CPU programs walk (host: node_layout,
+ *                     render/kernel_programs.hpp);
  *   traverse_flat.cl  with -DCLP_ACCEL_FLAT, the thesis renderer's flat list
  *                     of object boxes in BvhNode64 records (host/bvh/flat.hpp),
  *                     the baseline the BVH is measured against.
@@ -26,15 +30,18 @@
  * each layout file compiles only under its own. */
 #if defined(CLP_ACCEL_FLAT)
 #define CLP_LAYOUT_FLAT
+#elif defined(CLP_NODES_BVH8)
+#define CLP_LAYOUT_BVH8
 #else
 #define CLP_LAYOUT_BVH4
 #endif
 
 #include "traverse_bvh4.cl"
+#include "traverse_bvh8.cl"
 #include "traverse_flat.cl"
 #ifdef CLP_HAS_INSTANCES
-#ifdef CLP_ACCEL_FLAT
-#error "instances are walked in the 4-wide BVH only (-DCLP_HAS_INSTANCES without -DCLP_ACCEL_FLAT)"
+#ifndef CLP_LAYOUT_BVH4
+#error "instances are walked in the 4-wide BVH only (-DCLP_HAS_INSTANCES without -DCLP_ACCEL_FLAT or -DCLP_NODES_BVH8)"
 #endif
 #include "traverse_instances.cl"
 #endif

@@ -251,7 +251,7 @@ InstanceBenchResult run_instance_bench(Context& ctx, const Scene& scene, const I
     } else {
         flat = std::make_unique<Scene>(flatten_instances(scene, o.flatten_limit));
         const Bvh bvh = build_accel(Accel::Bvh, flat->vertices, flat->triangle_object, o.bvh);
-        const std::vector<unsigned char> flat_bytes = device_nodes(Accel::Bvh, bvh);
+        const std::vector<unsigned char> flat_bytes = device_nodes(Accel::Bvh, bvh, node_layout(code, false));
         res.flattened = true;
         res.flattened_build_ms = bvh.stats.build_ms;
         res.flattened_bytes = flat_bytes.size() + bvh.triangles.size() * sizeof(TriVerts);

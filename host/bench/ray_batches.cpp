@@ -242,7 +242,8 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
 
     const Bvh structure = build_accel(o.accel, scene.vertices, scene.triangle_object, o.bvh);
     res.structure = structure.stats;
-    const std::vector<unsigned char> node_bytes = device_nodes(o.accel, structure);
+    const KernelCode code = kernel_code(ctx.device());
+    const std::vector<unsigned char> node_bytes = device_nodes(o.accel, structure, node_layout(code, false));
     res.structure_bytes = node_bytes.size() + structure.triangles.size() * sizeof(TriVerts);
     // The CPU reference walks a BVH; for the flat structure it is a second
     // structure, so the check also compares flat against BVH.
@@ -273,7 +274,7 @@ RayBenchResult run_ray_bench(Context& ctx, const Scene& scene, const RayBenchOpt
     Buffer variant_out;
     if (!o.ab.empty()) variant_out = ctx.buffer(n * sizeof(Hit), CL_MEM_READ_WRITE, "the variant's answers");
 
-    const ProgramSpec spec = ray_batch_program(o.accel, kernel_code(ctx.device()));
+    const ProgramSpec spec = ray_batch_program(o.accel, code);
     const std::string source = program_source(spec.roots), options = spec.options;
     BuildResult built = build_program(ctx, source, options);
     say(std::string("kernels ") + (built.from_cache ? "loaded from cache" : "compiled") + " in " +

@@ -27,7 +27,9 @@ Bvh build_accel(Accel accel, const std::vector<glm::vec3>& vertices,
     return build_bvh(vertices, options);
 }
 
-std::vector<unsigned char> device_nodes(Accel accel, const Bvh& structure) {
+const char* node_layout_name(NodeLayout layout) { return layout == NodeLayout::Bvh8 ? "bvh8" : "bvh4"; }
+
+std::vector<unsigned char> device_nodes(Accel accel, const Bvh& structure, NodeLayout layout) {
     std::vector<unsigned char> bytes;
     auto copy = [&bytes](const auto& records) {
         bytes.resize(records.size() * sizeof(records[0]));
@@ -35,6 +37,8 @@ std::vector<unsigned char> device_nodes(Accel accel, const Bvh& structure) {
     };
     if (accel == Accel::Flat)
         copy(structure.nodes);
+    else if (layout == NodeLayout::Bvh8)
+        copy(widen_bvh8(structure.nodes));
     else
         copy(widen_bvh(structure.nodes));
     return bytes;

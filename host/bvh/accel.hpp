@@ -24,9 +24,16 @@ const char* accel_name(Accel accel);
 Bvh build_accel(Accel accel, const std::vector<glm::vec3>& vertices,
                 const std::vector<std::uint32_t>& triangle_object, const BvhBuildOptions& options = {});
 
+// How many children a BVH node holds on the device: four (Bvh4Node128, what
+// GPUs and instanced scenes walk) or eight (Bvh8Node256, what CPUs walk).
+// The program that walks the nodes is built for the same layout
+// (render/kernel_programs.hpp, node_layout and layout_options).
+enum class NodeLayout { Bvh4, Bvh8 };
+const char* node_layout_name(NodeLayout layout);  // "bvh4", "bvh8"
+
 // The node buffer the kernels traverse (kernels/traverse*.cl, AccelNode), as
-// bytes: the BVH widened to four children per node (bvh/wide.hpp), or the
-// flat list's records as built.
-std::vector<unsigned char> device_nodes(Accel accel, const Bvh& structure);
+// bytes: the BVH widened to the layout's children per node (bvh/wide.hpp),
+// or the flat list's records as built (the layout then says nothing).
+std::vector<unsigned char> device_nodes(Accel accel, const Bvh& structure, NodeLayout layout);
 
 }  // namespace clpath

@@ -38,10 +38,11 @@ int expand(const BvhNodes& binary, Slot* slots, int n, int k) {
     return n + 1;
 }
 
-// The collapse under one rule. LargestFirst gives up (an empty vector) as
-// soon as a node would lie deeper than CLP_BVH4_MAX_DEPTH.
-std::vector<Bvh4Node128> widen(const BvhNodes& binary, WideningRule rule) {
-    std::vector<Bvh4Node128> wide(1);
+// The collapse into nodes of W children under one rule. LargestFirst gives
+// up (an empty vector) as soon as a node would lie deeper than max_depth.
+template <int W, class Node>
+std::vector<Node> widen(const BvhNodes& binary, WideningRule rule, int max_depth) {
+    std::vector<Node> wide(1);
     wide.reserve(binary.size() / 2 + 1);
     struct Item {
         int binary, wide, depth;
@@ -50,8 +51,8 @@ std::vector<Bvh4Node128> widen(const BvhNodes& binary, WideningRule rule) {
     while (!stack.empty()) {
         const Item it = stack.back();
         stack.pop_back();
-        if (rule == WideningRule::LargestFirst && it.depth > CLP_BVH4_MAX_DEPTH) return {};
-        Slot slots[4];
+        if (rule == WideningRule::LargestFirst && it.depth > max_depth) return {};
+        Slot slots[W];
         int n = 0;
         for (int s = 0; s < 2; ++s) {
             const Slot sl = slot_of(binary[std::size_t(it.binary)], s);
@@ -68,14 +69,14 @@ std::vector<Bvh4Node128> widen(const BvhNodes& binary, WideningRule rule) {
         // entered (the largest surface area) is opened: opening a child
         // saves every ray that enters it one node fetch, and rays enter a
         // box in proportion to its area (the SAH's geometric argument).
-        while (n < 4) {
+        while (n < W) {
             int best = -1;
             for (int k = 0; k < n; ++k)
                 if (slots[k].interior() && (best < 0 || slots[k].area() > slots[best].area())) best = k;
             if (best < 0) break;
             n = expand(binary, slots, n, best);
         }
-        Bvh4Node128 out{};
+        Node out{};
         for (int k = 0; k < n; ++k) {
             const Slot& sl = slots[k];
             out.lo_x[k] = sl.lo[0], out.lo_y[k] = sl.lo[1], out.lo_z[k] = sl.lo[2];
@@ -90,7 +91,7 @@ std::vector<Bvh4Node128> widen(const BvhNodes& binary, WideningRule rule) {
                 out.count[k] = sl.count;
             }
         }
-        // Slots n..3 stay empty: child 0, count 0, a zero box the kernel never tests.
+        // Slots n..W-1 stay empty: child 0, count 0, a zero box the kernel never tests.
         wide[std::size_t(it.wide)] = out;
     }
     return wide;
@@ -98,18 +99,22 @@ std::vector<Bvh4Node128> widen(const BvhNodes& binary, WideningRule rule) {
 
 }  // namespace
 
-std::vector<Bvh4Node128> widen_bvh(const BvhNodes& binary, WideningRule rule) {
+namespace {
+
+template <int W, class Node>
+std::vector<Node> widen_checked(const BvhNodes& binary, WideningRule rule, int max_depth, std::size_t max_nodes) {
     if (binary.empty()) throw std::invalid_argument("cannot widen a BVH with no nodes");
-    std::vector<Bvh4Node128> wide;
-    if (rule == WideningRule::LargestFirst) wide = widen(binary, WideningRule::LargestFirst);
-    if (wide.empty()) wide = widen(binary, WideningRule::TwoLevels);
-    if (wide.size() > std::size_t(CLP_BVH4_MAX_NODES))
-        throw Error("the scene's BVH has " + std::to_string(wide.size()) + " 4-wide nodes; the kernels address at most " +
-                    std::to_string(CLP_BVH4_MAX_NODES));
+    std::vector<Node> wide;
+    if (rule == WideningRule::LargestFirst) wide = widen<W, Node>(binary, WideningRule::LargestFirst, max_depth);
+    if (wide.empty()) wide = widen<W, Node>(binary, WideningRule::TwoLevels, max_depth);
+    if (wide.size() > max_nodes)
+        throw Error("the scene's BVH has " + std::to_string(wide.size()) + " " + std::to_string(W) +
+                    "-wide nodes; the kernels address at most " + std::to_string(max_nodes));
     return wide;
 }
 
-int check_wide(const std::vector<Bvh4Node128>& wide, const Bvh& bvh) {
+template <int W, class Node>
+int check(const std::vector<Node>& wide, const Bvh& bvh, int max_depth) {
     auto fail = [](const std::string& what) { throw std::logic_error("wide BVH invariant broken: " + what); };
     if (wide.empty()) fail("no root");
     std::vector<int> seen_tri(bvh.triangles.size(), 0), seen_node(wide.size(), 0);
@@ -126,11 +131,11 @@ int check_wide(const std::vector<Bvh4Node128>& wide, const Bvh& bvh) {
         const Item it = stack.back();
         stack.pop_back();
         depth = std::max(depth, it.depth);
-        if (it.depth > CLP_BVH4_MAX_DEPTH) fail("deeper than CLP_BVH4_MAX_DEPTH");
-        const Bvh4Node128& n = wide[it.node];
+        if (it.depth > max_depth) fail("deeper than the traversal stack allows (" + std::to_string(max_depth) + ")");
+        const Node& n = wide[it.node];
         bool ended = false;
         int used = 0;
-        for (int k = 0; k < 4; ++k) {
+        for (int k = 0; k < W; ++k) {
             const float lo[3] = {n.lo_x[k], n.lo_y[k], n.lo_z[k]}, hi[3] = {n.hi_x[k], n.hi_y[k], n.hi_z[k]};
             if (n.child[k] == 0 && n.count[k] == 0) {
                 ended = true;
@@ -167,6 +172,24 @@ int check_wide(const std::vector<Bvh4Node128>& wide, const Bvh& bvh) {
     for (std::size_t i = 0; i < seen_tri.size(); ++i)
         if (!seen_tri[i]) fail("triangle " + std::to_string(i) + " in no leaf");
     return depth;
+}
+
+}  // namespace
+
+std::vector<Bvh4Node128> widen_bvh(const BvhNodes& binary, WideningRule rule) {
+    return widen_checked<4, Bvh4Node128>(binary, rule, CLP_BVH4_MAX_DEPTH, std::size_t(CLP_BVH4_MAX_NODES));
+}
+
+std::vector<Bvh8Node256> widen_bvh8(const BvhNodes& binary, WideningRule rule) {
+    return widen_checked<8, Bvh8Node256>(binary, rule, CLP_BVH8_MAX_DEPTH, std::size_t(CLP_BVH8_MAX_NODES));
+}
+
+int check_wide(const std::vector<Bvh4Node128>& wide, const Bvh& bvh) {
+    return check<4>(wide, bvh, CLP_BVH4_MAX_DEPTH);
+}
+
+int check_wide(const std::vector<Bvh8Node256>& wide, const Bvh& bvh) {
+    return check<8>(wide, bvh, CLP_BVH8_MAX_DEPTH);
 }
 
 }  // namespace clpath

@@ -1,7 +1,8 @@
 #pragma once
 // The BVH as the kernels traverse it: the binary tree of bvh.hpp collapsed
-// into nodes of four children (Bvh4Node128, kernels/shared_structs.h). Each wide
-// node takes its binary node's children, then splits the largest remaining
+// into nodes of four children (Bvh4Node128, kernels/shared_structs.h: what
+// GPUs and instanced scenes walk) or eight (Bvh8Node256: what CPUs walk,
+// bvh/accel.hpp's NodeLayout). Each wide node takes its binary node's children, then splits the largest remaining
 // interior child while there is room (the collapse of Wald, Benthin and
 // Boulos 2008, "Getting rid of packets"). The child boxes are the binary
 // tree's boxes, bit for bit, and the triangles keep their leaf order, so hits
@@ -32,11 +33,15 @@ enum class WideningRule {
 // Throws std::invalid_argument for no nodes.
 std::vector<Bvh4Node128> widen_bvh(const BvhNodes& binary,
                                 WideningRule rule = WideningRule::LargestFirst);
+// The same into nodes of eight, within CLP_BVH8_MAX_DEPTH.
+std::vector<Bvh8Node256> widen_bvh8(const BvhNodes& binary, WideningRule rule = WideningRule::LargestFirst);
 
 // Returns the depth (root = 1). Throws std::logic_error naming the first
 // broken invariant: every child box contains everything below it (exactly),
 // every triangle of bvh is in one leaf, every node is reached once, empty
-// slots only after full ones, and the depth is within CLP_BVH4_MAX_DEPTH.
+// slots only after full ones, and the depth is within CLP_BVH4_MAX_DEPTH
+// (CLP_BVH8_MAX_DEPTH for eight).
 int check_wide(const std::vector<Bvh4Node128>& wide, const Bvh& bvh);
+int check_wide(const std::vector<Bvh8Node256>& wide, const Bvh& bvh);
 
 }  // namespace clpath

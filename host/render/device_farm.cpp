@@ -223,7 +223,9 @@ const SceneSummary& DeviceFarm::scene_summary() const { return prepared_->summar
 
 std::size_t DeviceFarm::scene_device_bytes() const {
     std::size_t n = 0;
-    for (const auto& [what, bytes] : DeviceScene::memory_needs(*prepared_)) n += bytes;
+    // As the first device holds it (devices of other kinds may hold other node layouts).
+    for (const auto& [what, bytes] : DeviceScene::memory_needs(*prepared_, DeviceScene::device_node_layout(devices_.front(), *prepared_)))
+        n += bytes;
     return n;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "render/kernel_programs.hpp"
 #include "util/error.hpp"
 
 namespace clpath {
@@ -30,9 +31,13 @@ std::size_t light_infinite_bytes(const PreparedScene& s) {
 
 }  // namespace
 
-std::vector<std::pair<std::string, std::size_t>> DeviceScene::memory_needs(const PreparedScene& s) {
+NodeLayout DeviceScene::device_node_layout(const DeviceInfo& device, const PreparedScene& s) {
+    return node_layout(kernel_code(device), s.summary.instanced);
+}
+
+std::vector<std::pair<std::string, std::size_t>> DeviceScene::memory_needs(const PreparedScene& s, NodeLayout layout) {
     // The kernels' node records (device_nodes): widened from the binary tree, so sized by converting.
-    return {{"BVH nodes", scene_node_bytes(s).size()},
+    return {{"BVH nodes", scene_node_bytes(s, layout).size()},
             {"triangles", s.accel.triangles.size() * sizeof(TriVerts)},
             {"triangle materials", s.triangle_material.size() * sizeof(std::uint32_t)},
             {"materials", s.materials.size() * sizeof(Material)},
@@ -55,8 +60,9 @@ const std::vector<std::string>& scene_buffer_names() {
 }
 
 DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s) : ctx_(ctx), summary_(s.summary) {
-    ctx.check_fits(memory_needs(s));
-    const std::vector<unsigned char> node_bytes = scene_node_bytes(s);
+    const NodeLayout layout = device_node_layout(ctx.device(), s);
+    ctx.check_fits(memory_needs(s, layout));
+    const std::vector<unsigned char> node_bytes = scene_node_bytes(s, layout);
     slot(SceneBuffer::nodes) = ctx.buffer(node_bytes.size(), CL_MEM_READ_ONLY, "BVH nodes", node_bytes.data());
     slot(SceneBuffer::tris) = ctx.buffer(s.accel.triangles.size() * sizeof(TriVerts), CL_MEM_READ_ONLY, "triangles",
                        s.accel.triangles.data());

@@ -30,8 +30,11 @@ public:
     // clpath::Error naming the part that does not fit.
     DeviceScene(Context& ctx, const PreparedScene& scene);
 
-    // The buffers this scene needs on a device, by name (for Context::check_fits).
-    static std::vector<std::pair<std::string, std::size_t>> memory_needs(const PreparedScene& scene);
+    // The buffers this scene needs on a device, by name (for Context::check_fits),
+    // its nodes in that device's layout (device_node_layout).
+    static std::vector<std::pair<std::string, std::size_t>> memory_needs(const PreparedScene& scene, NodeLayout layout);
+    // The node layout a device's programs walk for this scene (render/kernel_programs.hpp, node_layout).
+    static NodeLayout device_node_layout(const DeviceInfo& device, const PreparedScene& scene);
 
     // Number of kernel arguments bind() sets.
     static constexpr cl_uint kArgCount = cl_uint(SceneBuffer::count);

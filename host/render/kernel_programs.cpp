@@ -18,6 +18,11 @@ const char* const kMaterialNames[CLP_MAT_KIND_COUNT] = {CLP_MATERIAL_KINDS(CLP_M
 
 std::string code_options(KernelCode code) { return code == KernelCode::Gpu ? " -DCLP_TARGET_GPU" : ""; }
 
+// The node layout's option, none for the flat structure (which has no wide nodes).
+std::string walk_options(bool flat, KernelCode code, bool instances) {
+    return flat ? "" : layout_options(node_layout(code, instances));
+}
+
 // A feature a scene can hold, by name, and how to switch it on.
 struct SceneSwitch {
     const char* name;
@@ -123,6 +128,12 @@ KernelCode kernel_code(const DeviceInfo& device) {
 
 const char* kernel_code_name(KernelCode code) { return code == KernelCode::Gpu ? "gpu" : "cpu"; }
 
+NodeLayout node_layout(KernelCode code, bool instances) {
+    return code == KernelCode::Cpu && !instances ? NodeLayout::Bvh8 : NodeLayout::Bvh4;
+}
+
+std::string layout_options(NodeLayout layout) { return layout == NodeLayout::Bvh8 ? " -DCLP_NODES_BVH8" : ""; }
+
 KernelCode parse_kernel_code(const std::string& name) {
     if (name == "gpu") return KernelCode::Gpu;
     if (name == "cpu") return KernelCode::Cpu;
@@ -133,7 +144,7 @@ ProgramSpec integrator_program(const KernelFeatures& features, KernelCode code) 
     ProgramSpec p;
     p.name = std::string(integrator_name(features.integrator));
     p.roots = renderer_kernel_files();
-    p.options = build_options(features) + code_options(code);
+    p.options = build_options(features) + code_options(code) + walk_options(features.flat_accel, code, features.instances);
     p.kernels = {"render_paths", "film_resolve", "film_add_exact", "film_add_exact_half"};
     return p;
 }
@@ -142,7 +153,7 @@ ProgramSpec wavefront_program(const KernelFeatures& features, KernelCode code) {
     ProgramSpec p;
     p.name = std::string("wf-") + integrator_name(features.integrator);
     p.roots = wavefront_kernel_files();
-    p.options = build_options(features) + code_options(code);
+    p.options = build_options(features) + code_options(code) + walk_options(features.flat_accel, code, features.instances);
     p.kernels = {"wf_camera",      "wf_trace",      "wf_shade",     "wf_light",       "wf_connect",
                  "wf_scatter",     "wf_shadow",     "wf_next_bounce", "wf_accumulate", "film_resolve",
                  "film_add_exact", "film_add_exact_half"};
@@ -159,7 +170,8 @@ ProgramSpec ray_batch_program(Accel accel, KernelCode code, bool instances) {
     p.name = std::string("rays-") + accel_name(accel) + (instances ? "-instances" : "");
     p.roots = {"ray_batches.cl"};
     p.options = std::string(accel == Accel::Flat ? "-cl-std=CL1.2 -DCLP_ACCEL_FLAT" : "-cl-std=CL1.2") +
-                (instances ? " -DCLP_HAS_INSTANCES" : "") + code_options(code);
+                (instances ? " -DCLP_HAS_INSTANCES" : "") + code_options(code) +
+                walk_options(accel == Accel::Flat, code, instances);
     p.kernels = {"batch_primary_rays", "batch_secondary_rays", "batch_trace_closest", "batch_trace_any"};
     return p;
 }

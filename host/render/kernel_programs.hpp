@@ -26,6 +26,16 @@ KernelCode kernel_code(const DeviceInfo& device);
 const char* kernel_code_name(KernelCode code);    // "cpu", "gpu"
 KernelCode parse_kernel_code(const std::string& name);  // throws clpath::UsageError
 
+// The BVH node layout a program walks (bvh/accel.hpp): eight children per
+// node for CPU code, four for GPU code (its register and stack budgets were
+// measured on the 4-wide walk) and for instanced scenes (the two-level walk
+// is 4-wide). The node buffer (device_nodes) and the program's
+// layout_options must come from the same choice; every program spec below
+// takes it from here.
+NodeLayout node_layout(KernelCode code, bool instances);
+// " -DCLP_NODES_BVH8" for Bvh8, "" for Bvh4 (kernels/traverse.cl).
+std::string layout_options(NodeLayout layout);
+
 // One program: what clBuildProgram receives is program_source(roots) and options.
 struct ProgramSpec {
     std::string name;                  // unique within a list, usable as a file name

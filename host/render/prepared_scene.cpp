@@ -142,8 +142,8 @@ TwoLevelBvh scene_two_level(const Scene& scene, const BvhBuildOptions& options) 
     return build_two_level(meshes, first_prim, instances, options);
 }
 
-std::vector<unsigned char> scene_node_bytes(const PreparedScene& s) {
-    if (!s.summary.instanced) return device_nodes(s.summary.accel, s.accel);
+std::vector<unsigned char> scene_node_bytes(const PreparedScene& s, NodeLayout layout) {
+    if (!s.summary.instanced) return device_nodes(s.summary.accel, s.accel, layout);
     std::vector<unsigned char> bytes(s.instanced_nodes.size() * sizeof(Bvh4Node128));
     std::memcpy(bytes.data(), s.instanced_nodes.data(), bytes.size());
     return bytes;

@@ -91,7 +91,8 @@ std::shared_ptr<const PreparedScene> prepare_scene(const Scene& scene, const Ren
 TwoLevelBvh scene_two_level(const Scene& scene, const BvhBuildOptions& options);
 
 // The node buffer the kernels traverse, as bytes: device_nodes of the
-// structure, or the two-level nodes of an instanced scene.
-std::vector<unsigned char> scene_node_bytes(const PreparedScene& scene);
+// structure in the program's layout (render/kernel_programs.hpp,
+// node_layout), or the two-level nodes of an instanced scene (always 4-wide).
+std::vector<unsigned char> scene_node_bytes(const PreparedScene& scene, NodeLayout layout);
 
 }  // namespace clpath

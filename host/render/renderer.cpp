@@ -28,7 +28,7 @@ Renderer::Renderer(Context& ctx, const PreparedScene& scene, const RenderSetting
     validate_settings(settings);
     camera_data(camera_);
     // Everything at once, so that a scene too large is refused before any upload.
-    auto needs = DeviceScene::memory_needs(scene);
+    auto needs = DeviceScene::memory_needs(scene, DeviceScene::device_node_layout(ctx.device(), scene));
     for (auto& n : Film::memory_needs(camera_.width, camera_.height)) needs.push_back(std::move(n));
     ctx.check_fits(needs);
     scene_ = std::make_unique<DeviceScene>(ctx, scene);

@@ -37,6 +37,16 @@ int checked_depth(const Bvh& bvh) {
     EXPECT_LE(two.size(), bvh.nodes.size());
     // Each wide level spans two binary ones (root = 1 on both sides).
     EXPECT_LE(two_depth, (bvh.stats.max_depth + 1) / 2);
+    // Eight children: the same invariants, and no deeper than four.
+    const std::vector<Bvh8Node256> eight = widen_bvh8(bvh.nodes);
+    int eight_depth = 0;
+    EXPECT_NO_THROW(eight_depth = check_wide(eight, bvh));
+    EXPECT_LE(eight.size(), wide.size()) << "eight children need no more nodes than four";
+    EXPECT_LE(eight_depth, depth);
+    const std::vector<Bvh8Node256> eight_two = widen_bvh8(bvh.nodes, WideningRule::TwoLevels);
+    int eight_two_depth = 0;
+    EXPECT_NO_THROW(eight_two_depth = check_wide(eight_two, bvh));
+    EXPECT_LE(eight_two_depth, (bvh.stats.max_depth + 1) / 2);
     return depth;
 }
 
@@ -126,6 +136,8 @@ TEST(BvhWide, DeepestBinaryTreeFitsTheStack) {
     EXPECT_EQ(check_wide(wide, chain), CLP_BVH4_MAX_DEPTH);
     ASSERT_EQ(wide.size(), two.size());
     EXPECT_EQ(std::memcmp(wide.data(), two.data(), wide.size() * sizeof(Bvh4Node128)), 0);
+    // Eight children fall back the same way and stay within CLP_BVH8_MAX_DEPTH.
+    EXPECT_LE(check_wide(widen_bvh8(chain.nodes), chain), CLP_BVH8_MAX_DEPTH);
 }
 
 // root = [A, B]; A = [A1, leaf 0] with A1 = [leaf 3, leaf 4] nearly as large
@@ -187,4 +199,14 @@ TEST(BvhWide, ControlBrokenTreesAreRejected) {
     const Bvh chain = twig_chain(CLP_BVH_MAX_DEPTH + 2);
     EXPECT_THROW(check_wide(widen_bvh(chain.nodes), chain), std::logic_error);
     EXPECT_THROW(widen_bvh({}), std::invalid_argument);
+    // The same controls for eight children.
+    const std::vector<Bvh8Node256> good8 = widen_bvh8(bvh.nodes);
+    ASSERT_NO_THROW(check_wide(good8, bvh));
+    std::vector<Bvh8Node256> w8 = good8;
+    w8[1].hi_x[0] = w8[1].lo_x[0];
+    EXPECT_THROW(check_wide(w8, bvh), std::logic_error);
+    w8 = good8;
+    w8[0].child[1] = w8[0].child[0];
+    EXPECT_THROW(check_wide(w8, bvh), std::logic_error);
+    EXPECT_THROW(widen_bvh8({}), std::invalid_argument);
 }

@@ -74,7 +74,7 @@ DeviceHits trace(const Bvh& structure, Accel accel, const std::vector<BatchRay>&
     Kernel closest = ctx.kernel(built.program.get(), "batch_trace_closest");
     Kernel any = ctx.kernel(built.program.get(), "batch_trace_any");
     const std::uint32_t n = std::uint32_t(rays.size());
-    Buffer nodes = test::upload(device_nodes(accel, structure)), tris = test::upload(structure.triangles), rb = test::upload(rays);
+    Buffer nodes = test::upload(device_nodes(accel, structure, node_layout(kernel_code(ctx.device()), false))), tris = test::upload(structure.triangles), rb = test::upload(rays);
     Buffer hits = ctx.buffer(n * sizeof(Hit), CL_MEM_READ_WRITE, "hits");
     Buffer occ = ctx.buffer(n * sizeof(int), CL_MEM_READ_WRITE, "occluders");
     closest.arg(0, nodes).arg(1, tris).arg(2, rb).arg(3, hits).arg(4, n);

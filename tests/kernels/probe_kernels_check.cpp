@@ -210,7 +210,7 @@ TEST(ProbeKernels, Watertight) {
     std::vector<float> targets;
     for (std::size_t i = 0; i < 4; ++i) targets.insert(targets.end(), {box[i].x, box[i].y, box[i].z});
     Kernel k = test::device().kernel(test::robustness_program(), "probe_watertight");
-    Buffer nodes = test::upload(device_nodes(Accel::Bvh, bvh)), tris = test::upload(bvh.triangles), tb = test::upload(targets);
+    Buffer nodes = test::upload(device_nodes(Accel::Bvh, bvh, test::node_layout())), tris = test::upload(bvh.triangles), tb = test::upload(targets);
     Buffer leaks = test::upload(std::vector<std::uint32_t>{0});
     Buffer first = test::upload(std::vector<std::uint64_t>{0});
     k.arg(0, nodes).arg(1, tris).arg(2, tb).arg(3, 4u).arg(4, 0.0f).arg(5, 0.0f).arg(6, 0.0f);

@@ -330,7 +330,7 @@ TEST(GltfRender, GltfpackOutputRendersLikeTheOriginal) {
 // one zero record in place of the extensions.
 TEST(GltfRender, MaterialExtensionsOnlyForScenesWithTexturesOrAlpha) {
     const auto needs = [](const PreparedScene& p) {
-        for (const auto& [what, bytes] : DeviceScene::memory_needs(p))
+        for (const auto& [what, bytes] : DeviceScene::memory_needs(p, test::node_layout()))
             if (what == "material extensions") return bytes;
         ADD_FAILURE() << "no material extensions entry";
         return std::size_t(0);

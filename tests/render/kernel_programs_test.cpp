@@ -32,16 +32,29 @@ bool has_define(const std::string& options, const std::string& name) {
 
 }  // namespace
 
-TEST(KernelPrograms, CodesDifferByTheGpuDefineOnly) {
+// CPU code walks 8-wide nodes, GPU code 4-wide ones: the two programs differ
+// by the GPU define and the node layout's, nothing else.
+TEST(KernelPrograms, CodesDifferByTheGpuAndLayoutDefinesOnly) {
     KernelFeatures f;
     f.materials[CLP_MAT_DIFFUSE] = true;
     const ProgramSpec cpu = integrator_program(f, KernelCode::Cpu), gpu = integrator_program(f, KernelCode::Gpu);
-    EXPECT_EQ(cpu.options, build_options(f));
+    EXPECT_EQ(cpu.options, build_options(f) + " -DCLP_NODES_BVH8");
     EXPECT_EQ(gpu.options, build_options(f) + " -DCLP_TARGET_GPU");
+    EXPECT_EQ(wavefront_program(f, KernelCode::Cpu).options, build_options(f) + " -DCLP_NODES_BVH8");
     EXPECT_EQ(cpu.roots, renderer_kernel_files());
     EXPECT_FALSE(has_define(ray_batch_program(Accel::Bvh, KernelCode::Cpu).options, "CLP_TARGET_GPU"));
     EXPECT_TRUE(has_define(ray_batch_program(Accel::Flat, KernelCode::Gpu).options, "CLP_TARGET_GPU"));
     EXPECT_TRUE(has_define(ray_batch_program(Accel::Flat, KernelCode::Cpu).options, "CLP_ACCEL_FLAT"));
+    EXPECT_TRUE(has_define(ray_batch_program(Accel::Bvh, KernelCode::Cpu).options, "CLP_NODES_BVH8"));
+    EXPECT_FALSE(has_define(ray_batch_program(Accel::Bvh, KernelCode::Gpu).options, "CLP_NODES_BVH8"));
+    // The flat structure has no wide nodes, and instanced scenes walk 4-wide ones on every device.
+    EXPECT_FALSE(has_define(ray_batch_program(Accel::Flat, KernelCode::Cpu).options, "CLP_NODES_BVH8"));
+    EXPECT_FALSE(has_define(ray_batch_program(Accel::Bvh, KernelCode::Cpu, true).options, "CLP_NODES_BVH8"));
+    f.instances = true;
+    EXPECT_FALSE(has_define(integrator_program(f, KernelCode::Cpu).options, "CLP_NODES_BVH8"));
+    EXPECT_EQ(node_layout(KernelCode::Cpu, false), NodeLayout::Bvh8);
+    EXPECT_EQ(node_layout(KernelCode::Cpu, true), NodeLayout::Bvh4);
+    EXPECT_EQ(node_layout(KernelCode::Gpu, false), NodeLayout::Bvh4);
 }
 
 TEST(KernelPrograms, CodeFollowsTheDeviceUnlessTheEnvironmentChooses) {

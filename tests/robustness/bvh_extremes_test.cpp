@@ -37,7 +37,7 @@ Traced trace(const Bvh& bvh, const std::vector<float>& rays, bool brute) {
         test::run(k, n);
     } else {
         Kernel k = test::device().kernel(test::probe_program(), "probe_trace");
-        Buffer nodes = test::upload(device_nodes(Accel::Bvh, bvh)), tb = test::upload(std::vector<float>(n, INFINITY));
+        Buffer nodes = test::upload(device_nodes(Accel::Bvh, bvh, test::node_layout())), tb = test::upload(std::vector<float>(n, INFINITY));
         Buffer oa = test::device().buffer(n * sizeof(int), CL_MEM_READ_WRITE, "any");
         k.arg(0, nodes).arg(1, tris).arg(2, rb).arg(3, tb).arg(4, ot).arg(5, op).arg(6, oa).arg(7, n);
         test::run(k, n);

@@ -97,7 +97,7 @@ Leaks shoot(const std::vector<glm::vec3>& mesh, glm::vec3 centre, float radius, 
     const auto targets = targets_of(mesh, 7);
     const std::uint32_t tcount = std::uint32_t(targets.size() / 3);
     Kernel k = test::device().kernel(test::robustness_program(), "probe_watertight");
-    Buffer nodes = test::upload(device_nodes(Accel::Bvh, bvh)), tris = test::upload(bvh.triangles), tb = test::upload(targets);
+    Buffer nodes = test::upload(device_nodes(Accel::Bvh, bvh, test::node_layout())), tris = test::upload(bvh.triangles), tb = test::upload(targets);
     Buffer leaks = test::upload(std::vector<std::uint32_t>{0});
     Buffer first = test::upload(std::vector<std::uint64_t>{0});
     const float margin = 0.05f;  // far below any chord through these meshes' insides

@@ -1,11 +1,14 @@
 #include "support/test_device.hpp"
 
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <memory>
 
 #include "cl/embedded_sources.hpp"
 #include "render/kernel_features.hpp"
+#include "render/kernel_programs.hpp"
+#include "util/error.hpp"
 
 namespace clpath::test {
 
@@ -31,11 +34,22 @@ cl_program test_program(const std::string& root, const std::string& options) {
     return it->second.get();
 }
 
+NodeLayout node_layout() {
+    static const NodeLayout layout = [] {
+        const char* e = std::getenv("CLPATH_TEST_NODES");
+        if (e && std::string(e) == "bvh4") return NodeLayout::Bvh4;
+        if (e && std::string(e) == "bvh8") return NodeLayout::Bvh8;
+        if (e && *e) throw Error(std::string("CLPATH_TEST_NODES=") + e + ": choose bvh4 or bvh8");
+        return clpath::node_layout(kernel_code(device().device()), false);
+    }();
+    return layout;
+}
+
 cl_program probe_program(const RenderSettings& settings) {
     RenderSettings all = settings;
     // Every feature compiled in, so probes reach every material and light kind.
     all.all_features = true;
-    return test_program("probes.cl", build_options(kernel_features(SceneFeatures{}, all)));
+    return test_program("probes.cl", build_options(kernel_features(SceneFeatures{}, all)) + layout_options(node_layout()));
 }
 
 cl_program probe_program() { return probe_program(RenderSettings{}); }

@@ -7,6 +7,7 @@
 #include "cl/context.hpp"
 #include "cl/embedded_sources.hpp"
 #include "cl/program.hpp"
+#include "bvh/accel.hpp"
 #include "render/settings.hpp"
 
 namespace clpath {
@@ -22,7 +23,13 @@ Context& device();
 // it needs), once per test program and set of options.
 cl_program test_program(const std::string& root, const std::string& options);
 
-// tests/kernels/probes.cl, built once per test program.
+// The BVH node layout the test programs walk and device_nodes makes for
+// them: $CLPATH_TEST_NODES (bvh4 or bvh8) if set, else what the renderer's
+// programs walk on the test device (node_layout: bvh8 on PoCL's CPU device).
+// CTest runs the traversal tests under both (tests/CMakeLists.txt).
+NodeLayout node_layout();
+
+// tests/kernels/probes.cl, built once per test program (for node_layout()).
 cl_program probe_program();
 // The same, built with the estimator choices of these settings (e.g. uniform
 // hemisphere sampling); every feature is compiled in whatever they say.

@@ -7,7 +7,7 @@ namespace clpath::test {
 Traced trace_bvh(const Bvh& bvh, const std::vector<float>& rays, const std::vector<float>& tmax) {
     const std::uint32_t n = std::uint32_t(tmax.size());
     Kernel k = device().kernel(probe_program(), "probe_trace");
-    Buffer nodes = upload(device_nodes(Accel::Bvh, bvh)), tris = upload(bvh.triangles), rb = upload(rays), tb = upload(tmax);
+    Buffer nodes = upload(device_nodes(Accel::Bvh, bvh, node_layout())), tris = upload(bvh.triangles), rb = upload(rays), tb = upload(tmax);
     Buffer ot = device().buffer(n * sizeof(float), CL_MEM_READ_WRITE, "t");
     Buffer op = device().buffer(n * sizeof(int), CL_MEM_READ_WRITE, "prim");
     Buffer oa = device().buffer(n * sizeof(int), CL_MEM_READ_WRITE, "any");
