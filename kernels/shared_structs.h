@@ -206,6 +206,7 @@ typedef struct {
  * handles all eight boxes; a tree about two thirds as deep as the 4-wide
  * one, for twice the bytes a node. On PoCL it traced 1.05-1.21x the rays
  * per second of Bvh4Node128 (cornell, bunny, room:1003542, scaling:1000;
+ * about as many at 10^7 triangles, where cache misses set the pace;
  * benchmarks/results/pocl-epyc-2core/). GPUs keep Bvh4Node128: their
  * kernels are held to register and stack budgets measured on the 4-wide
  * walk (benchmarks/results/gpu-compile/), and instanced scenes too (their

@@ -29,8 +29,9 @@ public:
         std::string options = read_file(dir + "/batch_kernels.options");
         while (!options.empty() && (options.back() == '\n' || options.back() == '\r')) options.pop_back();
         const std::string nodes = read_file(dir + "/nodes.bin"), tris = read_file(dir + "/triangles.bin");
+        // Nodes of 128 bytes (4-wide) or 256 (8-wide, what CPU programs walk): whole multiples of 128 either way.
         if (nodes.empty() || nodes.size() % 128 || tris.empty() || tris.size() % 48)
-            throw Fail(dir + ": nodes.bin or triangles.bin is not whole 128-byte nodes and 48-byte triangles");
+            throw Fail(dir + ": nodes.bin or triangles.bin is not whole nodes (128 or 256 bytes) and 48-byte triangles");
         cl_int e;
         const char* src = source.c_str();
         program_ = clCreateProgramWithSource(cl.context, 1, &src, nullptr, &e);
