@@ -39,6 +39,20 @@
 #include "traverse_bvh4.cl"
 #include "traverse_bvh8.cl"
 #include "traverse_flat.cl"
+
+/* The wide layouts name their walks alike: traverse_tree (closest hit) and
+ * occlude_tree (any hit). */
+#if defined(CLP_LAYOUT_BVH4) || defined(CLP_LAYOUT_BVH8)
+CLP_GPU_INLINE void accel_closest_hit(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
+                                     const RayPre* r, float tmax, uint* visits CLP_ALPHA_PARAM) {
+    CLP_WALK_ASSIGN(hit) traverse_tree(CLP_WALK_OUT_ARG(hit) nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
+}
+
+CLP_GPU_INLINE void accel_any_hit(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
+                                 const RayPre* r, float tmax, uint* visits CLP_ALPHA_PARAM) {
+    CLP_WALK_ASSIGN(hit) occlude_tree(CLP_WALK_OUT_ARG(hit) nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
+}
+#endif
 #ifdef CLP_HAS_INSTANCES
 #ifndef CLP_LAYOUT_BVH4
 #error "instances are walked in the 4-wide BVH only (-DCLP_HAS_INSTANCES without -DCLP_ACCEL_FLAT or -DCLP_NODES_BVH8)"

@@ -158,16 +158,6 @@ CLP_WALK CLP_WALK_RESULT occlude_tree(CLP_WALK_OUT global const Bvh8Node256* nod
     CLP_WALK_RETURN(hit);
 }
 
-CLP_GPU_INLINE void accel_closest_hit(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
-                                     const RayPre* r, float tmax, uint* visits CLP_ALPHA_PARAM) {
-    CLP_WALK_ASSIGN(hit) traverse_tree(CLP_WALK_OUT_ARG(hit) nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
-}
-
-CLP_GPU_INLINE void accel_any_hit(Hit* hit, global const AccelNode* nodes, global const TriVerts* tris,
-                                 const RayPre* r, float tmax, uint* visits CLP_ALPHA_PARAM) {
-    CLP_WALK_ASSIGN(hit) occlude_tree(CLP_WALK_OUT_ARG(hit) nodes, tris, r, tmax, visits CLP_ALPHA_ARG);
-}
-
 #undef CLP_MIN8
 #undef CLP_MAX8
 #endif
