@@ -27,8 +27,6 @@ Bvh build_accel(Accel accel, const std::vector<glm::vec3>& vertices,
     return build_bvh(vertices, options);
 }
 
-const char* node_layout_name(NodeLayout layout) { return layout == NodeLayout::Bvh8 ? "bvh8" : "bvh4"; }
-
 std::vector<unsigned char> device_nodes(Accel accel, const Bvh& structure, NodeLayout layout) {
     std::vector<unsigned char> bytes;
     auto copy = [&bytes](const auto& records) {

@@ -29,7 +29,6 @@ Bvh build_accel(Accel accel, const std::vector<glm::vec3>& vertices,
 // The program that walks the nodes is built for the same layout
 // (render/kernel_programs.hpp, node_layout and layout_options).
 enum class NodeLayout { Bvh4, Bvh8 };
-const char* node_layout_name(NodeLayout layout);  // "bvh4", "bvh8"
 
 // The node buffer the kernels traverse (kernels/traverse*.cl, AccelNode), as
 // bytes: the BVH widened to the layout's children per node (bvh/wide.hpp),
