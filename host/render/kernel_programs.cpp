@@ -16,7 +16,18 @@ namespace {
 const char* const kMaterialNames[CLP_MAT_KIND_COUNT] = {CLP_MATERIAL_KINDS(CLP_MAT_NAME)};
 #undef CLP_MAT_NAME
 
-std::string code_options(KernelCode code) { return code == KernelCode::Gpu ? " -DCLP_TARGET_GPU" : ""; }
+// CPU programs flush subnormals (-cl-denorms-are-zero; Embree's tutorials set
+// FTZ and DAZ on every thread likewise). A TriVerts row carries an integer in
+// its fourth lane (the triangle's index: a subnormal float below 2^23) and the
+// triangle test subtracts whole rows, so without it x86 met a subnormal
+// operand in nearly every leaf test. The arithmetic needs none: the triangle
+// test's products reach 2^-126 only at scene scales far below the 1e-4 the
+// robustness suite renders, and a product flushed to zero is flushed alike in
+// the two triangles sharing the edge (still watertight); the exact film
+// converts its sums bit by bit (film.cl).
+std::string code_options(KernelCode code) {
+    return code == KernelCode::Gpu ? " -DCLP_TARGET_GPU" : " -cl-denorms-are-zero";
+}
 
 // The node layout's option, none for the flat structure (which has no wide nodes).
 std::string walk_options(bool flat, KernelCode code, bool instances) {

@@ -32,15 +32,16 @@ bool has_define(const std::string& options, const std::string& name) {
 
 }  // namespace
 
-// CPU code walks 8-wide nodes, GPU code 4-wide ones: the two programs differ
-// by the GPU define and the node layout's, nothing else.
-TEST(KernelPrograms, CodesDifferByTheGpuAndLayoutDefinesOnly) {
+// CPU code walks 8-wide nodes, GPU code 4-wide ones, and CPU code flushes
+// subnormals: the two programs differ by the GPU define, the node layout's
+// and that option, nothing else.
+TEST(KernelPrograms, CodesDifferByTheGpuDefineTheLayoutAndDenormalsOnly) {
     KernelFeatures f;
     f.materials[CLP_MAT_DIFFUSE] = true;
     const ProgramSpec cpu = integrator_program(f, KernelCode::Cpu), gpu = integrator_program(f, KernelCode::Gpu);
-    EXPECT_EQ(cpu.options, build_options(f) + " -DCLP_NODES_BVH8");
+    EXPECT_EQ(cpu.options, build_options(f) + " -cl-denorms-are-zero -DCLP_NODES_BVH8");
     EXPECT_EQ(gpu.options, build_options(f) + " -DCLP_TARGET_GPU");
-    EXPECT_EQ(wavefront_program(f, KernelCode::Cpu).options, build_options(f) + " -DCLP_NODES_BVH8");
+    EXPECT_EQ(wavefront_program(f, KernelCode::Cpu).options, build_options(f) + " -cl-denorms-are-zero -DCLP_NODES_BVH8");
     EXPECT_EQ(cpu.roots, renderer_kernel_files());
     EXPECT_FALSE(has_define(ray_batch_program(Accel::Bvh, KernelCode::Cpu).options, "CLP_TARGET_GPU"));
     EXPECT_TRUE(has_define(ray_batch_program(Accel::Flat, KernelCode::Gpu).options, "CLP_TARGET_GPU"));
