@@ -91,15 +91,15 @@ static inline float3 env_sample_direction(constant const FrameParams* fp, const 
         float du = (u2 - row[x]) / fmax(row[x + 1] - row[x], 1e-30f);
         float u = ((float)x + clamp(du, 0.0f, 1.0f)) / (float)w;
         float v = ((float)y + clamp(dv, 0.0f, 1.0f)) / (float)h;
-        /* theta and phi in units of pi (sinpi, cospi: sampling.cl, sample_concentric_disk) */
-        float theta_pi = v, phi_pi = (u - 0.5f) * 2.0f;
-        float st = sinpi(theta_pi);
-        float3 d = (float3)(st * sinpi(phi_pi), cospi(theta_pi), -st * cospi(phi_pi));
+        /* theta and phi in units of pi (cos_sin_pi: sampling.cl) */
+        const float2 theta = cos_sin_pi(v), phi = cos_sin_pi((u - 0.5f) * 2.0f);
+        float3 d = (float3)(theta.y * phi.y, theta.x, -theta.y * phi.x);
         return env_rotate(fp, d, -1.0f);
     }
 #endif
-    float z = 1.0f - 2.0f * u1, r = sqrt(fmax(0.0f, 1.0f - z * z)), phi_pi = 2.0f * u2; /* units of pi */
-    return (float3)(r * cospi(phi_pi), z, r * sinpi(phi_pi));
+    float z = 1.0f - 2.0f * u1, r = sqrt(fmax(0.0f, 1.0f - z * z));
+    const float2 phi = cos_sin_pi(2.0f * u2); /* the angle in units of pi */
+    return (float3)(r * phi.x, z, r * phi.y);
 }
 
 /* ---- picking and sampling ----------------------------------------------- */

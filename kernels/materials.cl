@@ -114,8 +114,9 @@ static inline float3 ggx_sample_visible_normal(float3 wo, float alpha, float u1,
     float len2 = vh.x * vh.x + vh.y * vh.y;
     float3 t1 = len2 > 0.0f ? (float3)(-vh.y, vh.x, 0.0f) * rsqrt(len2) : (float3)(1.0f, 0.0f, 0.0f);
     float3 t2 = cross(vh, t1);
-    float r = sqrt(u1), phi_pi = 2.0f * u2; /* in units of pi (sampling.cl, sample_concentric_disk) */
-    float p1 = r * cospi(phi_pi), p2 = r * sinpi(phi_pi);
+    float r = sqrt(u1);
+    const float2 cs = cos_sin_pi(2.0f * u2); /* the angle in units of pi (sampling.cl) */
+    float p1 = r * cs.x, p2 = r * cs.y;
     float s = 0.5f * (1.0f + vh.z);
     p2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - p1 * p1)) + s * p2;
     float3 nh = p1 * t1 + p2 * t2 + sqrt(fmax(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;

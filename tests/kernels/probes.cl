@@ -82,6 +82,15 @@ kernel void probe_cosine(global float* out, uint count, uint seed) {
     out[3 * i + 2] = d.z;
 }
 
+/* cos_sin_pi (sampling.cl) of x[i] and, as the control's wrong answer, the
+ * quarter-interval polynomials applied to x[i] unreduced. */
+kernel void probe_cos_sin_pi(global const float* x, global float2* out, global float2* unreduced, uint count) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    out[i] = cos_sin_pi(x[i]);
+    unreduced[i] = cos_sin_pi_quarter(x[i]);
+}
+
 /* length3 and normalize3 (common.h) of v[i] beside the builtins, and, as the
  * control's wrong answer, sqrt(dot(v, v)) with no fallback. */
 kernel void probe_length3(global const float* v, global float* len, global float* len_builtin, global float* unit,

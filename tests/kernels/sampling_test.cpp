@@ -1,6 +1,7 @@
 // Cosine-weighted hemisphere sampling (kernels/sampling.cl): the directions
-// follow cos(theta)/pi, checked by a chi-square goodness-of-fit test. And the
-// upper-half-plane atan2 the solid angle of a light triangle is taken with.
+// follow cos(theta)/pi, checked by a chi-square goodness-of-fit test. The
+// upper-half-plane atan2 the solid angle of a light triangle is taken with,
+// and the cos and sin of pi x every sampled angle is turned into.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -109,6 +110,87 @@ double worst_relative_error(const Atan2Results& r, const std::vector<float>& got
     return worst;
 }
 }  // namespace
+
+namespace {
+struct CosSinPi {
+    std::vector<float> x, cos, sin, unreduced_cos, unreduced_sin;
+};
+
+CosSinPi run_cos_sin_pi(std::vector<float> x) {
+    const auto n = static_cast<std::uint32_t>(x.size());
+    Kernel k = test::device().kernel(test::probe_program(), "probe_cos_sin_pi");
+    Buffer xb = test::upload(x);
+    Buffer out = test::device().buffer(x.size() * 2 * sizeof(float), CL_MEM_READ_WRITE, "cos sin");
+    Buffer unreduced = test::device().buffer(x.size() * 2 * sizeof(float), CL_MEM_READ_WRITE, "unreduced");
+    k.arg(0, xb).arg(1, out).arg(2, unreduced).arg(3, n);
+    test::run(k, n);
+    const auto o = test::download<float>(out, 2 * std::size_t(n)), q = test::download<float>(unreduced, 2 * std::size_t(n));
+    CosSinPi r{std::move(x), {}, {}, {}, {}};
+    for (std::uint32_t i = 0; i < n; ++i) {
+        r.cos.push_back(o[2 * i]);
+        r.sin.push_back(o[2 * i + 1]);
+        r.unreduced_cos.push_back(q[2 * i]);
+        r.unreduced_sin.push_back(q[2 * i + 1]);
+    }
+    return r;
+}
+
+// cos(pi x) and sin(pi x) in double, x reduced exactly by multiples of 2 first.
+double cos_pi(double x) { return std::cos(kPi * (x - 2.0 * std::nearbyint(0.5 * x))); }
+double sin_pi(double x) { return std::sin(kPi * (x - 2.0 * std::nearbyint(0.5 * x))); }
+
+// The largest error of got relative to the exact values, in units of 2^-24;
+// a value that should be exactly 0 (sin of an integer, cos of a half-integer)
+// must be 0.
+double worst_error_u(const std::vector<float>& x, const std::vector<float>& got, double (*exact)(double)) {
+    double worst = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        const double e = exact(double(x[i]));
+        const bool zero = 2.0 * double(x[i]) == std::nearbyint(2.0 * double(x[i])) && std::fabs(e) < 1e-12;
+        const double err = zero ? (got[i] == 0.0f ? 0.0 : std::numeric_limits<double>::infinity())
+                                : std::fabs(double(got[i]) - e) / std::fabs(e) / std::ldexp(1.0, -24);
+        worst = std::isnan(err) ? std::numeric_limits<double>::infinity() : std::max(worst, err);
+    }
+    return worst;
+}
+
+// The bound, u = 2^-24, first order. x = k/2 + y is exact (Sterbenz) and the
+// quarter turns only swap and negate, so each result is one of the two
+// polynomials at |y| <= 1/4. cos: 1 + t Q(t), t = y^2: Horner's ten roundings,
+// gamma(10) sum|b_i| t^i / cos(pi y) <= 10u 1.325 / 0.707 = 18.8u; t's own
+// rounding, |t c'(t)| u / c <= 0.44u; the fit's error 0.21u (in exact
+// arithmetic, over 4e6 points). sin: y P(t): eight roundings, gamma(8) 3.475
+// / 2.828 = 9.9u; the product by y, u; t, 0.12u; the fit, 0.54u. 20u covers both.
+constexpr double kCosSinPiBoundU = 20.0;
+}  // namespace
+
+TEST(CosSinPi, RelativeErrorWithinItsBoundInEveryQuarterTurn) {
+    // A dense grid over [-2, 2] (every quarter turn, both signs), the points
+    // where the turn changes (odd multiples of 1/4) with their neighbours,
+    // tiny angles, and large ones, where k is even and y 0 or a multiple of 1/4.
+    std::vector<float> x;
+    for (int i = -(1 << 19); i <= (1 << 19); ++i) x.push_back(float(i) / float(1 << 17));
+    for (int q = -9; q <= 9; q += 2)
+        for (float v = float(q) * 0.25f, d = 0; d < 8; ++d) {
+            x.push_back(v);
+            v = std::nextafter(v, 10.0f);
+        }
+    for (float v : {1e-30f, -1e-20f, 3e-8f, 1e3f + 0.3f, -12345.678f, 4194304.5f, 16777216.0f, 1e30f}) x.push_back(v);
+    const CosSinPi r = run_cos_sin_pi(x);
+    const double wc = worst_error_u(r.x, r.cos, cos_pi), ws = worst_error_u(r.x, r.sin, sin_pi);
+    EXPECT_LE(wc, kCosSinPiBoundU);
+    EXPECT_LE(ws, kCosSinPiBoundU);
+    std::printf("cos_sin_pi: worst relative error cos %.2f u, sin %.2f u, bound %.0f u\n", wc, ws, kCosSinPiBoundU);
+}
+
+TEST(CosSinPi, ControlTheUnreducedPolynomialsAreRejected) {
+    // The same check rejects the quarter-interval polynomials applied beyond
+    // the quarter, where they are no longer cos and sin.
+    const CosSinPi r = run_cos_sin_pi({0.1f, 0.3f, 0.9f, -1.6f});
+    EXPECT_LE(std::max(worst_error_u(r.x, r.cos, cos_pi), worst_error_u(r.x, r.sin, sin_pi)), kCosSinPiBoundU);
+    EXPECT_GT(std::max(worst_error_u(r.x, r.unreduced_cos, cos_pi), worst_error_u(r.x, r.unreduced_sin, sin_pi)),
+              1e3);
+}
 
 TEST(Atan2Upper, RelativeErrorWithinItsBoundInEveryOctant) {
     // y >= 0, x of either sign, both over 2^-20..2^20 so that every octant
