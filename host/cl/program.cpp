@@ -58,13 +58,16 @@ std::vector<unsigned char> program_binary(cl_program p) {
 
 }  // namespace
 
-std::uint64_t fnv1a64(const std::string& data, std::uint64_t h) {
-    for (unsigned char c : data) {
-        h ^= c;
+std::uint64_t fnv1a64(const void* data, std::size_t bytes, std::uint64_t h) {
+    const unsigned char* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) {
+        h ^= p[i];
         h *= 1099511628211ull;
     }
     return h;
 }
+
+std::uint64_t fnv1a64(const std::string& data, std::uint64_t h) { return fnv1a64(data.data(), data.size(), h); }
 
 BuildResult build_program(Context& ctx, const std::string& source, const std::string& options) {
     const auto t0 = std::chrono::steady_clock::now();

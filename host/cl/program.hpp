@@ -44,7 +44,13 @@ struct BuildResult {
 // with the device's full build log.
 BuildResult build_program(Context& ctx, const std::string& source, const std::string& options);
 
-// 64-bit FNV-1a: a stable hash for cache keys (std::hash is not stable across builds).
+// 64-bit FNV-1a's step (xor a byte, multiply by the FNV prime): a stable hash
+// for cache keys and checkpoints (std::hash is not stable across builds). The
+// default seed is not FNV's published offset basis (14695981039346656037) but
+// that number short of its last digit; it stays, as checkpoints store hashes
+// made with it.
 std::uint64_t fnv1a64(const std::string& data, std::uint64_t seed = 1469598103934665603ull);
+// The same over bytes in place (a scene's arrays: no copy into a string).
+std::uint64_t fnv1a64(const void* data, std::size_t bytes, std::uint64_t seed = 1469598103934665603ull);
 
 }  // namespace clpath

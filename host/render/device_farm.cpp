@@ -63,6 +63,10 @@ void DeviceFarm::run_device(std::size_t i, ChunkSource& source) {
         }
     };
     Renderer renderer = on_device([&] { return Renderer(ctx, *prepared_, settings_); });
+    if (i == 0) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        scene_bytes_ = renderer.device_scene().bytes();
+    }
     DeviceExactFilm exact = on_device(
         [&] { return DeviceExactFilm(ctx, scene_camera_.width, scene_camera_.height, pass_chunks_ > 0); });
     std::vector<std::uint64_t> done;
@@ -222,8 +226,12 @@ const BvhStats& DeviceFarm::bvh_stats() const { return prepared_->summary.bvh_st
 const SceneSummary& DeviceFarm::scene_summary() const { return prepared_->summary; }
 
 std::size_t DeviceFarm::scene_device_bytes() const {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (scene_bytes_) return scene_bytes_;
+    }
     std::size_t n = 0;
-    // As the first device holds it (devices of other kinds may hold other node layouts).
+    // As the first device would hold it (devices of other kinds may hold other node layouts).
     for (const auto& [what, bytes] : DeviceScene::memory_needs(*prepared_, DeviceScene::device_node_layout(devices_.front(), *prepared_)))
         n += bytes;
     return n;

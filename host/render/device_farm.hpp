@@ -80,7 +80,8 @@ public:
     std::vector<DeviceShare> shares() const;
     const BvhStats& bvh_stats() const;
     const SceneSummary& scene_summary() const;
-    // The bytes one device holds for the scene (DeviceScene::memory_needs, summed).
+    // The bytes one device holds for the scene: the first device's scene
+    // buffers as uploaded, else (before it uploads) DeviceScene::memory_needs, summed.
     std::size_t scene_device_bytes() const;
 
 private:
@@ -109,6 +110,7 @@ private:
     std::vector<std::uint64_t> start_done_;  // and its chunks
     std::vector<Published> published_;
     std::vector<DeviceShare> shares_;
+    std::size_t scene_bytes_ = 0;  // the first device's scene buffers, once uploaded
     std::vector<std::thread> threads_;
     std::atomic<int> running_{0};
     std::atomic<std::uint64_t> spp_{0};

@@ -37,7 +37,12 @@ NodeLayout DeviceScene::device_node_layout(const DeviceInfo& device, const Prepa
 
 std::vector<std::pair<std::string, std::size_t>> DeviceScene::memory_needs(const PreparedScene& s, NodeLayout layout) {
     // The kernels' node records (device_nodes): widened from the binary tree, so sized by converting.
-    return {{"BVH nodes", scene_node_bytes(s, layout).size()},
+    return memory_needs(s, scene_node_bytes(s, layout).size());
+}
+
+std::vector<std::pair<std::string, std::size_t>> DeviceScene::memory_needs(const PreparedScene& s,
+                                                                           std::size_t node_bytes) {
+    return {{"BVH nodes", node_bytes},
             {"triangles", s.accel.triangles.size() * sizeof(TriVerts)},
             {"triangle materials", s.triangle_material.size() * sizeof(std::uint32_t)},
             {"materials", s.materials.size() * sizeof(Material)},
@@ -59,10 +64,18 @@ const std::vector<std::string>& scene_buffer_names() {
     return names;
 }
 
-DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s) : ctx_(ctx), summary_(s.summary) {
-    const NodeLayout layout = device_node_layout(ctx.device(), s);
-    ctx.check_fits(memory_needs(s, layout));
-    const std::vector<unsigned char> node_bytes = scene_node_bytes(s, layout);
+std::size_t DeviceScene::bytes() const {
+    std::size_t n = 0;
+    for (const Buffer& b : buffers_) n += b.bytes();
+    return n;
+}
+
+DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s)
+    : DeviceScene(ctx, s, scene_node_bytes(s, device_node_layout(ctx.device(), s))) {}
+
+DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s, const std::vector<unsigned char>& node_bytes)
+    : ctx_(ctx), summary_(s.summary) {
+    ctx.check_fits(memory_needs(s, node_bytes.size()));
     slot(SceneBuffer::nodes) = ctx.buffer(node_bytes.size(), CL_MEM_READ_ONLY, "BVH nodes", node_bytes.data());
     slot(SceneBuffer::tris) = ctx.buffer(s.accel.triangles.size() * sizeof(TriVerts), CL_MEM_READ_ONLY, "triangles",
                        s.accel.triangles.data());

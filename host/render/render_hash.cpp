@@ -12,7 +12,7 @@ class Hasher {
 public:
     template <class T>
     void add(const T* data, std::size_t count) {
-        h_ = fnv1a64(std::string(reinterpret_cast<const char*>(data), count * sizeof(T)), h_);
+        h_ = fnv1a64(data, count * sizeof(T), h_);
     }
     template <class T>
     void add(const std::vector<T>& v) {

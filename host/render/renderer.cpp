@@ -27,11 +27,16 @@ Renderer::Renderer(Context& ctx, const PreparedScene& scene, const RenderSetting
     : ctx_(ctx), camera_(scene.camera) {
     validate_settings(settings);
     camera_data(camera_);
-    // Everything at once, so that a scene too large is refused before any upload.
-    auto needs = DeviceScene::memory_needs(scene, DeviceScene::device_node_layout(ctx.device(), scene));
-    for (auto& n : Film::memory_needs(camera_.width, camera_.height)) needs.push_back(std::move(n));
-    ctx.check_fits(needs);
-    scene_ = std::make_unique<DeviceScene>(ctx, scene);
+    {
+        // Everything at once, so that a scene too large is refused before any
+        // upload; the nodes widened once, for the sizing and the upload.
+        const std::vector<unsigned char> node_bytes =
+            scene_node_bytes(scene, DeviceScene::device_node_layout(ctx.device(), scene));
+        auto needs = DeviceScene::memory_needs(scene, node_bytes.size());
+        for (auto& n : Film::memory_needs(camera_.width, camera_.height)) needs.push_back(std::move(n));
+        ctx.check_fits(needs);
+        scene_ = std::make_unique<DeviceScene>(ctx, scene, node_bytes);
+    }
     film_ = std::make_unique<Film>(ctx, camera_.width, camera_.height);
     program_ = std::make_unique<IntegratorProgram>(ctx, scene.summary, settings, std::move(variant));
     if (scene.summary.accel == Accel::Bvh) bvh_nodes_ = scene.accel.nodes;  // the flat list is no tree to draw
