@@ -234,7 +234,7 @@ Scene builtin_scene(const std::string& name) {
         char* end = nullptr;
         const double n = std::strtod(count.c_str(), &end);
         if (count.empty() || *end != '\0' || !(n >= 1) || n != std::floor(n) || n > 1e12)
-            throw Error(name + ": expected " + prefix + "N with N a whole number (of triangles; of instances for bunnies:, of lamps for city:), e.g. " + prefix +
+            throw Error(name + ": expected " + prefix + "N with N a positive whole number (of triangles; of instances for bunnies:, of lamps for city:), e.g. " + prefix +
                         "100000 or " + prefix + "1e6");
         return make(std::size_t(n));
     }
