@@ -49,8 +49,9 @@ BuildResult build_program(Context& ctx, const std::string& source, const std::st
 // default seed is not FNV's published offset basis (14695981039346656037) but
 // that number short of its last digit; it stays, as checkpoints store hashes
 // made with it.
-std::uint64_t fnv1a64(const std::string& data, std::uint64_t seed = 1469598103934665603ull);
+constexpr std::uint64_t kFnv1a64Seed = 1469598103934665603ull;
+std::uint64_t fnv1a64(const std::string& data, std::uint64_t seed = kFnv1a64Seed);
 // The same over bytes in place (a scene's arrays: no copy into a string).
-std::uint64_t fnv1a64(const void* data, std::size_t bytes, std::uint64_t seed = 1469598103934665603ull);
+std::uint64_t fnv1a64(const void* data, std::size_t bytes, std::uint64_t seed = kFnv1a64Seed);
 
 }  // namespace clpath

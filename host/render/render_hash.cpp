@@ -26,7 +26,7 @@ public:
     std::uint64_t get() const { return h_; }
 
 private:
-    std::uint64_t h_ = 1469598103934665603ull;
+    std::uint64_t h_ = kFnv1a64Seed;
 };
 
 }  // namespace
