@@ -3,6 +3,8 @@
 // (PoCL compiles take seconds; a cached binary loads in milliseconds).
 #include <CL/cl.h>
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <utility>
 
