@@ -70,9 +70,6 @@ std::size_t DeviceScene::bytes() const {
     return n;
 }
 
-DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s)
-    : DeviceScene(ctx, s, scene_node_bytes(s, device_node_layout(ctx.device(), s))) {}
-
 DeviceScene::DeviceScene(Context& ctx, const PreparedScene& s, const std::vector<unsigned char>& node_bytes)
     : ctx_(ctx), summary_(s.summary) {
     ctx.check_fits(memory_needs(s, node_bytes.size()));

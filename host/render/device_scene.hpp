@@ -26,13 +26,11 @@ const std::vector<std::string>& scene_buffer_names();
 
 class DeviceScene {
 public:
-    // Checks that the arrays fit on the device, then uploads them. Throws
-    // clpath::Error naming the part that does not fit.
-    DeviceScene(Context& ctx, const PreparedScene& scene);
-    // The same with the nodes already in the device's layout
-    // (scene_node_bytes(scene, device_node_layout(...))), so a caller that
-    // sized them does not widen the tree again (at 10^7 triangles a widening
-    // takes about half a second and 0.4 GB).
+    // Checks that the arrays fit on the device, then uploads them, the nodes
+    // as given in the device's layout (scene_node_bytes(scene,
+    // device_node_layout(...))): the caller widens the tree once, for its own
+    // sizing too (at 10^7 triangles a widening takes about half a second and
+    // 0.4 GB). Throws clpath::Error naming the part that does not fit.
     DeviceScene(Context& ctx, const PreparedScene& scene, const std::vector<unsigned char>& node_bytes);
 
     // The buffers this scene needs on a device, by name (for Context::check_fits),
